@@ -1,0 +1,50 @@
+#include "cli.hpp"
+
+#include "log.hpp"
+#include "topomill/error.hpp"
+
+namespace topomill::cli {
+
+po::options_description common_options(Common& c) {
+  po::options_description o("Common options");
+  o.add_options()("plugin-path,P", po::value(&c.plugin_paths)->composing(),
+                  "extra plugin directory, searched first (repeatable, or colon-separated)")(
+      "verbose,v", po::bool_switch(&c.verbose), "log more (where each model came from, ...)")(
+      "quiet,q", po::bool_switch(&c.quiet), "log warnings and errors only")(
+      "help,h", po::bool_switch(&c.help), "show this help");
+  return o;
+}
+
+po::variables_map parse(const std::vector<std::string>& args, const po::options_description& opts,
+                        const po::positional_options_description& positional, Common& common) {
+  po::variables_map vm;
+  try {
+    po::store(po::command_line_parser(args).options(opts).positional(positional).run(), vm);
+    po::notify(vm);
+  } catch (const po::error& e) {
+    throw InputError(SourceRef{"command line"}, "", std::string(e.what()) + " (see --help)");
+  }
+  set_log_level(common.quiet ? LogLevel::Quiet
+                             : common.verbose ? LogLevel::Verbose : LogLevel::Normal);
+  return vm;
+}
+
+std::vector<PluginCatalog::Dir> search_path(const Common& common,
+                                            const std::vector<std::string>& scene_paths) {
+  std::vector<PluginCatalog::Dir> dirs;
+  for (const auto& entry : common.plugin_paths) {
+    std::size_t start = 0;
+    while (start <= entry.size()) {
+      std::size_t end = entry.find(':', start);
+      if (end == std::string::npos) end = entry.size();
+      if (end > start) dirs.push_back({entry.substr(start, end - start), "--plugin-path"});
+      start = end + 1;
+    }
+  }
+  for (const auto& p : scene_paths) dirs.push_back({p, "scene plugin_paths"});
+  for (const auto& p : PluginCatalog::env_dirs()) dirs.push_back({p, "TOPOMILL_PLUGIN_PATH"});
+  dirs.push_back({PluginCatalog::builtin_dir(), "built-in"});
+  return dirs;
+}
+
+}  // namespace topomill::cli

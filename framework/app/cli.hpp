@@ -1,0 +1,31 @@
+// Shared pieces of the command-line program: common options and the plugin search path.
+#pragma once
+
+#include <boost/program_options.hpp>
+#include <string>
+#include <vector>
+
+#include "plugin_catalog.hpp"
+
+namespace topomill::cli {
+
+namespace po = boost::program_options;
+
+struct Common {
+  std::vector<std::string> plugin_paths;
+  bool verbose = false, quiet = false, help = false;
+};
+
+// --plugin-path, --verbose, --quiet, --help.
+po::options_description common_options(Common& common);
+
+// Parses `args` against `visible` (+ the positional names), applies the log level. Unknown
+// options and missing values become InputError (exit code 2).
+po::variables_map parse(const std::vector<std::string>& args, const po::options_description& opts,
+                        const po::positional_options_description& positional, Common& common);
+
+// Search order: --plugin-path, the scene's plugin_paths, TOPOMILL_PLUGIN_PATH, built-in.
+std::vector<PluginCatalog::Dir> search_path(const Common& common,
+                                            const std::vector<std::string>& scene_paths = {});
+
+}  // namespace topomill::cli

@@ -1,0 +1,27 @@
+// Slot: the structure's vibration under the cutting force (MODEL.md Eq. 17, 22-26).
+#pragma once
+
+#include <limits>
+#include <vector>
+
+#include "topomill/model.hpp"
+#include "topomill/types.hpp"
+
+namespace topomill {
+
+class TOPOMILL_API DynamicsModel : public Model {
+ public:
+  // Displacement (mm, CS2) at each sample of a force history (N) sampled every `dt` seconds,
+  // starting from rest. The force is held constant over each step.
+  virtual std::vector<Vec3> respond(const std::vector<Vec3>& force, double dt) const = 0;
+  // Largest stable step (s) of the scheme for this model's modes; +infinity when unconditional.
+  // The core refuses a larger step with a message naming the limit, or sub-steps on request.
+  virtual double max_stable_step() const { return std::numeric_limits<double>::infinity(); }
+};
+
+template <>
+struct SlotOf<DynamicsModel> {
+  static constexpr Slot value = Slot::DynamicsModel;
+};
+
+}  // namespace topomill

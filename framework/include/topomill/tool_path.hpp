@@ -1,0 +1,66 @@
+// The tool-centre trajectory of a raster path over a cylindrical surface (MODEL.md Eq. 13-16),
+// plus the dynamic correction TC of Eq. 32-33. Owned by the core, read by evaluators.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "topomill/export.hpp"
+#include "topomill/surface_shape.hpp"
+#include "topomill/types.hpp"
+
+namespace topomill {
+
+class TOPOMILL_API ToolPath {
+ public:
+  // One pass: feed along +Y at x, starting with the surface point y_start under the tool at
+  // t = 0 and ending at t_end; `phase` is the spindle angle at t = 0 (rad).
+  struct Pass {
+    double x = 0.0;
+    double y_start = 0.0;
+    double t_end = 0.0;
+    double phase = 0.0;
+  };
+
+  // `offset` is R - ap, the distance of the ball centre from the uncut surface along its normal;
+  // `feed_speed` vf in mm/s; `spindle_rate` in rad/s, signed (negative = clockwise from above).
+  ToolPath(std::shared_ptr<const SurfaceShape> surface, double offset, double feed_speed,
+           double spindle_rate, std::vector<Pass> passes);
+
+  std::size_t passes() const { return passes_.size(); }
+  const Pass& pass(std::size_t p) const { return passes_[p]; }
+  double feed_speed() const { return feed_speed_; }
+  double spindle_rate() const { return spindle_rate_; }
+  double offset() const { return offset_; }
+  const SurfaceShape& surface() const { return *surface_; }
+
+  // Surface point under the tool centre at time t: y_n = y_start + vf t (the paper's feed model).
+  double surface_y(std::size_t p, double t) const;
+  // Ideal ball centre K (Eq. 15).
+  Vec3 nominal_centre(std::size_t p, double t) const;
+  // Ball centre with the correction of Eq. 32-33 added (linear between correction samples).
+  Vec3 centre(std::size_t p, double t) const;
+  double spindle_angle(std::size_t p, double t) const { return passes_[p].phase + spindle_rate_ * t; }
+
+  // Corrections sampled every `dt` from t = 0 of pass p; beyond the last sample it is held.
+  void set_correction(std::size_t p, double dt, std::vector<Vec3> samples);
+  bool corrected() const { return corrected_; }
+  // Largest |correction| component over all passes (mm): evaluators widen their margins by it.
+  double max_correction() const { return max_correction_; }
+
+ private:
+  Vec3 correction(std::size_t p, double t) const;
+
+  std::shared_ptr<const SurfaceShape> surface_;
+  double offset_, feed_speed_, spindle_rate_;
+  std::vector<Pass> passes_;
+  struct Samples {
+    double dt = 0.0;
+    std::vector<Vec3> values;
+  };
+  std::vector<Samples> corrections_;
+  bool corrected_ = false;
+  double max_correction_ = 0.0;
+};
+
+}  // namespace topomill

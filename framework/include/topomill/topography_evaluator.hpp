@@ -1,0 +1,46 @@
+// Slot: the height map swept by the cutting edges along the (corrected) tool path (Sec. 4).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+
+#include "topomill/model.hpp"
+#include "topomill/tool_geometry.hpp"
+#include "topomill/tool_path.hpp"
+#include "topomill/types.hpp"
+
+namespace topomill {
+
+struct EvaluationRequest {
+  const ToolGeometry* tool = nullptr;
+  const ToolPath* path = nullptr;
+  // Half-width kappa of the contact angle range (CATW, Eq. 39-42), rad: at a tool position over a
+  // surface point of inclination lambda, edge points with polar angle within |lambda| +- kappa can
+  // touch. Evaluators widen it by their own margin (Eq. 43) and clip it to [0, pi/2].
+  double kappa = 0.0;
+  // Largest |lambda| under the tool along the whole path, rad (for step-size rules).
+  double lambda_max = 0.0;
+  unsigned threads = 1;
+  // Called now and then with the finished fraction in [0, 1]; may be empty.
+  std::function<void(double)> progress;
+};
+
+// Work done, reported in summary.json ("time_steps", "edge_points", "updates", ...).
+using WorkCounts = std::map<std::string, std::uint64_t>;
+
+class TOPOMILL_API TopographyEvaluator : public Model {
+ public:
+  // Lowers `map` (initialised by the core to the uncut surface) wherever an edge passes below it.
+  // The result must not depend on `threads` or on the order of updates.
+  virtual void evaluate(const EvaluationRequest& request, HeightMap& map,
+                        WorkCounts& counts) const = 0;
+};
+
+template <>
+struct SlotOf<TopographyEvaluator> {
+  static constexpr Slot value = Slot::Evaluator;
+};
+
+}  // namespace topomill

@@ -1,0 +1,95 @@
+// Schemas of the core's own scene tables. Plugin tables carry their model's schema instead.
+#include "scene.hpp"
+
+namespace topomill {
+
+namespace {
+Schema scene_schema() {
+  Schema s;
+  s.add_string("name", "Title of the scene, copied into summary.json").with_default(std::string());
+  return s;
+}
+
+Schema cutting_schema() {
+  Schema s;
+  s.add_number("spindle_speed", "Spindle speed ns").with_unit("rpm").above(0).is_required();
+  s.add_number("feed_per_tooth", "Feed per tooth fz").with_unit("mm").above(0).is_required();
+  s.add_number("depth_of_cut", "Depth of cut ap, measured along the surface normal")
+      .with_unit("mm")
+      .above(0)
+      .is_required();
+  s.add_number("stepover", "Step-over ae between adjacent passes (along X)")
+      .with_unit("mm")
+      .above(0)
+      .is_required();
+  s.add_choice("spindle_direction", {"cw", "ccw"},
+               "Spindle rotation seen from above the tool: cw (M03, right-hand cutters) or ccw")
+      .with_default(std::string("cw"));
+  return s;
+}
+
+Schema path_schema() {
+  Schema s;
+  s.add_choice("strategy", {"raster"},
+               "Tool path: raster = one-way passes feeding along +Y, stepping along +X")
+      .with_default(std::string("raster"));
+  s.add_number("start_angle", "Spindle angle of the first tooth when the first pass starts")
+      .with_unit("deg")
+      .with_default(0.0);
+  s.add_number("phase_shift", "Spindle phase difference between adjacent passes (paper: 0)")
+      .with_unit("deg")
+      .with_default(0.0);
+  return s;
+}
+
+Schema region_schema() {
+  Schema s;
+  s.add_number("lambda",
+               "Inclination of the surface normal at the centre of the patch, from +Z towards +Y")
+      .with_unit("deg")
+      .at_least(-90)
+      .at_most(90)
+      .is_required();
+  s.add_number_array("size", "Patch size [along X, along the surface in Y]")
+      .with_unit("mm")
+      .with_length(2)
+      .above(0)
+      .is_required();
+  s.add_number("spacing", "Grid node spacing in X and Y").with_unit("mm").above(0).is_required();
+  return s;
+}
+
+Schema analysis_schema() {
+  Schema s;
+  s.add_choice("form", {"nominal", "plane", "none"},
+               "Form removal before the parameters: nominal = distance along the surface normal "
+               "from the nominal cut surface (the paper's unrolling), plane = least-squares plane")
+      .with_default(std::string("nominal"));
+  return s;
+}
+
+Schema output_schema() {
+  Schema s;
+  s.add_string("dir", "Output directory, relative to the working directory (--out overrides)")
+      .with_default(std::string());
+  s.add_string_array("formats", {"csv", "gsf", "png"},
+                     "Height-map files to write besides summary.json")
+      .with_default(std::vector<std::string>{"csv", "gsf", "png"});
+  return s;
+}
+}  // namespace
+
+const std::vector<std::pair<std::string, Schema>>& core_schemas() {
+  static const std::vector<std::pair<std::string, Schema>> all = {
+      {"scene", scene_schema()},       {"cutting", cutting_schema()},
+      {"path", path_schema()},         {"region", region_schema()},
+      {"analysis", analysis_schema()}, {"output", output_schema()}};
+  return all;
+}
+
+const std::vector<std::string>& effect_tables() {
+  static const std::vector<std::string> all = {"vibration", "deflection", "springback"};
+  return all;
+}
+
+}  // namespace topomill

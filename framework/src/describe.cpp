@@ -1,0 +1,114 @@
+#include "describe.hpp"
+
+#include <sstream>
+
+#include "scene.hpp"
+
+namespace topomill {
+
+namespace {
+std::string value_text(const Value& v) {
+  if (const double* d = std::get_if<double>(&v)) {
+    std::ostringstream os;
+    os.precision(12);
+    os << *d;
+    return os.str();
+  }
+  toml::table t;
+  insert_value(t, "v", v);
+  std::ostringstream os;
+  t.get("v")->visit([&](auto&& node) { os << node; });
+  return os.str();
+}
+
+std::string constraint_text(const ParamSpec& s) {
+  if (s.type == ParamType::Choice || (s.type == ParamType::StringArray && !s.choices.empty())) {
+    std::string out;
+    for (std::size_t i = 0; i < s.choices.size(); ++i) out += (i ? ", " : "") + s.choices[i];
+    return "one of " + out;
+  }
+  std::string out = s.range_text();
+  if (s.length) out += (out.empty() ? "" : ", ") + std::to_string(*s.length) + " elements";
+  return out;
+}
+
+std::string default_text(const ParamSpec& s) {
+  if (s.required) return "required";
+  if (!s.default_value) return "optional";
+  return value_text(*s.default_value);
+}
+}  // namespace
+
+toml::array schema_to_toml(const Schema& schema) {
+  toml::array params;
+  for (const auto& s : schema.specs()) {
+    toml::table p{{"name", s.name}, {"type", type_name(s.type)}, {"doc", s.doc},
+                  {"required", s.required}};
+    if (!s.unit.empty()) p.insert("unit", s.unit);
+    if (s.default_value) insert_value(p, "default", *s.default_value);
+    if (s.min) p.insert("min", *s.min), p.insert("min_exclusive", s.min_exclusive);
+    if (s.max) p.insert("max", *s.max), p.insert("max_exclusive", s.max_exclusive);
+    if (!s.choices.empty()) {
+      toml::array c;
+      for (const auto& x : s.choices) c.push_back(x);
+      p.insert("choices", std::move(c));
+    }
+    if (s.length) p.insert("length", static_cast<std::int64_t>(*s.length));
+    if (s.element) p.insert("element", schema_to_toml(*s.element));
+    params.push_back(std::move(p));
+  }
+  return params;
+}
+
+toml::table model_to_toml(const ModelEntry& e) {
+  return toml::table{{"name", e.info.name},
+                     {"slot", slot_id(e.info.slot)},
+                     {"doc", e.info.doc},
+                     {"library", e.library->path},
+                     {"library_name", e.library->name},
+                     {"library_version", e.library->version},
+                     {"parameters", schema_to_toml(e.schema)}};
+}
+
+std::string schema_text(const Schema& schema, const std::string& indent) {
+  std::ostringstream os;
+  for (const auto& s : schema.specs()) {
+    os << indent << s.name << " (" << type_name(s.type);
+    if (!s.unit.empty()) os << ", " << s.unit;
+    os << ", " << default_text(s);
+    std::string c = constraint_text(s);
+    if (!c.empty()) os << ", " << c;
+    os << ")\n" << indent << "    " << s.doc << "\n";
+    if (s.element) os << schema_text(*s.element, indent + "    ");
+  }
+  return os.str();
+}
+
+std::string schema_markdown(const Schema& schema) {
+  std::ostringstream os;
+  os << "| key | type | unit | default | allowed | description |\n";
+  os << "|---|---|---|---|---|---|\n";
+  for (const auto& s : schema.specs()) {
+    os << "| `" << s.name << "` | " << type_name(s.type) << " | " << s.unit << " | "
+       << default_text(s) << " | " << constraint_text(s) << " | " << s.doc << " |\n";
+  }
+  for (const auto& s : schema.specs()) {
+    if (!s.element) continue;
+    os << "\nEach table of `" << s.name << "`:\n\n" << schema_markdown(*s.element);
+  }
+  return os.str();
+}
+
+std::string to_json(const toml::table& table) {
+  std::ostringstream os;
+  os << toml::json_formatter{table} << "\n";
+  return os.str();
+}
+
+std::string to_json(const toml::array& array) {
+  std::ostringstream os;
+  os << toml::json_formatter{array} << "\n";
+  return os.str();
+}
+
+}  // namespace topomill

@@ -1,0 +1,22 @@
+// Renders schemas and the plugin catalogue as text, JSON or Markdown (the scene reference in
+// docs/ is generated from the Markdown form).
+#pragma once
+
+#include <string>
+#include <toml++/toml.h>
+
+#include "plugin_catalog.hpp"
+#include "topomill/params.hpp"
+
+namespace topomill {
+
+toml::array schema_to_toml(const Schema& schema);
+toml::table model_to_toml(const ModelEntry& entry);
+
+std::string schema_text(const Schema& schema, const std::string& indent = "  ");
+std::string schema_markdown(const Schema& schema);
+
+std::string to_json(const toml::table& table);
+std::string to_json(const toml::array& array);
+
+}  // namespace topomill

@@ -1,0 +1,195 @@
+#include "plugin_catalog.hpp"
+
+#include <algorithm>
+#include <boost/dll/runtime_symbol_info.hpp>
+#include <boost/dll/shared_library.hpp>
+#include <cstdlib>
+#include <filesystem>
+
+#include "log.hpp"
+
+namespace fs = std::filesystem;
+
+namespace topomill {
+
+namespace {
+constexpr const char* kEntrySymbol = "topomill_plugin_entry_v1";
+constexpr const char* kFilePrefix = "libtopomill_";
+
+bool is_library_file(const fs::path& p) {
+  return p.extension() == ".so" && p.filename().string().rfind("lib", 0) == 0;
+}
+}  // namespace
+
+PluginLibrary::~PluginLibrary() = default;
+
+PluginCatalog::PluginCatalog(std::vector<Dir> search_path) : dirs_(std::move(search_path)) {}
+PluginCatalog::~PluginCatalog() = default;
+
+std::string PluginCatalog::builtin_dir() {
+  fs::path core = boost::dll::this_line_location();
+  return (core.parent_path() / "topomill" / "plugins").string();
+}
+
+std::vector<std::string> PluginCatalog::env_dirs() {
+  std::vector<std::string> out;
+  const char* env = std::getenv("TOPOMILL_PLUGIN_PATH");
+  if (!env) return out;
+  std::string s = env;
+  std::size_t start = 0;
+  while (start <= s.size()) {
+    std::size_t end = s.find(':', start);
+    if (end == std::string::npos) end = s.size();
+    if (end > start) out.push_back(s.substr(start, end - start));
+    start = end + 1;
+  }
+  return out;
+}
+
+void PluginCatalog::refuse(const std::string& path, const std::string& reason) {
+  refused_.push_back({path, reason});
+  log_warning("plugin library '" + path + "' refused: " + reason);
+}
+
+void PluginCatalog::load(const std::string& raw_path) {
+  std::error_code ec;
+  std::string path = fs::weakly_canonical(raw_path, ec).string();
+  if (ec) path = raw_path;
+  if (seen_.count(path)) return;
+  seen_[path] = false;
+
+  auto handle = std::make_shared<boost::dll::shared_library>();
+  try {
+    handle->load(path, boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
+  } catch (const std::exception& e) {
+    refuse(path, std::string("cannot be opened: ") + e.what());
+    return;
+  }
+  if (!handle->has(kEntrySymbol)) {
+    refuse(path, std::string("not a topomill plugin: it exports no entry point '") + kEntrySymbol +
+                     "' (declare one with TOPOMILL_PLUGIN)");
+    return;
+  }
+  const PluginManifest* m = handle->get_alias<PluginEntry>(kEntrySymbol)();
+  // abi_version is the only field whose place every ABI agrees on: check it before the rest.
+  if (!m || m->abi_version != kAbiVersion) {
+    refuse(path, "built for topomill plugin ABI " + std::to_string(m ? m->abi_version : 0) +
+                     ", this program provides ABI " + std::to_string(kAbiVersion) +
+                     ": rebuild the plugin against this SDK");
+    return;
+  }
+  auto size_check = [&](const char* what, std::uint32_t theirs, std::size_t ours) {
+    if (theirs == ours) return true;
+    refuse(path, std::string("record size mismatch for ") + what + ": the plugin has " +
+                     std::to_string(theirs) + " bytes, this program " + std::to_string(ours) +
+                     ": rebuild the plugin against this SDK with the same compiler");
+    return false;
+  };
+  if (!size_check("PluginManifest", m->manifest_size, sizeof(PluginManifest)) ||
+      !size_check("ModelInfo", m->model_info_size, sizeof(ModelInfo)) ||
+      !size_check("Registrar", m->registrar_size, sizeof(Registrar)))
+    return;
+
+  Registrar registrar;
+  std::vector<Schema> schemas;
+  try {
+    m->register_models(registrar);
+    for (const auto& info : registrar.models()) schemas.push_back(info.schema());
+  } catch (const std::exception& e) {
+    refuse(path, std::string("registration failed: ") + e.what());
+    return;
+  }
+
+  auto lib = std::make_shared<PluginLibrary>();
+  lib->path = path;
+  lib->name = m->library_name ? m->library_name : "";
+  lib->version = m->library_version ? m->library_version : "";
+  lib->handle = handle;
+
+  for (const auto& info : registrar.models()) {
+    auto it = by_name_.find(info.name);
+    if (it != by_name_.end())
+      throw PluginError("model '" + info.name + "' is registered twice: by '" +
+                        it->second->library->path + "' and by '" + path +
+                        "'; remove one library from the search path or rename the model");
+  }
+  for (std::size_t i = 0; i < registrar.models().size(); ++i) {
+    auto entry = std::make_unique<ModelEntry>();
+    entry->info = std::move(registrar.models()[i]);
+    entry->schema = std::move(schemas[i]);
+    entry->library = lib;
+    by_name_[entry->info.name] = entry.get();
+    log_debug(std::string(slot_name(entry->info.slot)) + " '" + entry->info.name + "' from " +
+              path);
+    entries_.push_back(std::move(entry));
+  }
+  seen_[path] = true;
+}
+
+const ModelEntry* PluginCatalog::find(const std::string& name) {
+  auto known = by_name_.find(name);
+  if (known != by_name_.end()) return known->second;
+  for (const auto& dir : dirs_) {
+    fs::path candidate = fs::path(dir.path) / (kFilePrefix + name + ".so");
+    std::error_code ec;
+    if (!fs::exists(candidate, ec)) continue;
+    std::size_t refused_before = refused_.size();
+    load(candidate.string());
+    known = by_name_.find(name);
+    if (known != by_name_.end()) return known->second;
+    if (refused_.size() > refused_before)
+      throw PluginError("model '" + name + "' cannot be loaded: library '" +
+                        refused_.back().path + "' " + refused_.back().reason);
+  }
+  load_all();
+  known = by_name_.find(name);
+  return known == by_name_.end() ? nullptr : known->second;
+}
+
+void PluginCatalog::load_all() {
+  if (all_loaded_) return;
+  all_loaded_ = true;
+  for (const auto& dir : dirs_) {
+    std::error_code ec;
+    if (!fs::is_directory(dir.path, ec)) {
+      log_debug("plugin directory '" + dir.path + "' (" + dir.origin + ") does not exist");
+      continue;
+    }
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(dir.path, ec))
+      if (e.is_regular_file() && is_library_file(e.path())) files.push_back(e.path());
+    std::sort(files.begin(), files.end());  // a stable order makes duplicate errors reproducible
+    for (const auto& f : files) load(f.string());
+  }
+}
+
+std::vector<const ModelEntry*> PluginCatalog::models(Slot slot) const {
+  std::vector<const ModelEntry*> out;
+  for (const auto& [name, entry] : by_name_)
+    if (entry->info.slot == slot) out.push_back(entry);
+  return out;
+}
+
+std::vector<std::string> PluginCatalog::names(Slot slot) const {
+  std::vector<std::string> out;
+  for (const auto* e : models(slot)) out.push_back(e->info.name);
+  return out;
+}
+
+std::unique_ptr<Model> PluginCatalog::construct(const ModelEntry& entry, const Params& params,
+                                                Slot slot) const {
+  if (entry.info.slot != slot)
+    throw std::logic_error("model '" + entry.info.name + "' is a " + slot_name(entry.info.slot) +
+                           ", not a " + slot_name(slot));
+  try {
+    return entry.info.create(params);
+  } catch (const ParamError& e) {
+    std::string key = params.path().empty() ? e.key() : params.path() + "." + e.key();
+    throw InputError(params.where(e.key()), key, e.what());
+  } catch (const std::exception& e) {
+    throw PluginError("model '" + entry.info.name + "' from '" + entry.library->path +
+                      "' failed to construct: " + e.what());
+  }
+}
+
+}  // namespace topomill

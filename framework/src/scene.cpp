@@ -1,0 +1,467 @@
+#include "scene.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "suggest.hpp"
+
+namespace fs = std::filesystem;
+
+namespace topomill {
+
+namespace {
+
+struct SlotTableSpec {
+  const char* table;
+  Slot slot;
+  bool required;
+  const char* default_plugin;  // used when the table is absent; nullptr: none
+  bool effect;
+};
+
+const std::vector<SlotTableSpec>& slot_table_specs() {
+  static const std::vector<SlotTableSpec> specs = {
+      {"tool", Slot::ToolGeometry, true, nullptr, false},
+      {"workpiece", Slot::SurfaceShape, true, nullptr, false},
+      {"force", Slot::ForceModel, false, nullptr, false},
+      {"vibration", Slot::DynamicsModel, false, nullptr, true},
+      {"deflection", Slot::Deformation, false, nullptr, true},
+      {"springback", Slot::Deformation, false, nullptr, true},
+      {"evaluator", Slot::Evaluator, false, "zmap", false},
+  };
+  return specs;
+}
+
+const std::set<std::string> kRequiredCore = {"cutting", "region"};
+
+std::string node_kind(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "the string \"" + std::string(*n.as_string()) + "\"";
+    case toml::node_type::integer: return "the integer " + std::to_string(n.as_integer()->get());
+    case toml::node_type::floating_point: {
+      std::ostringstream os;
+      os << n.as_floating_point()->get();
+      return "the number " + os.str();
+    }
+    case toml::node_type::boolean: return n.as_boolean()->get() ? "true" : "false";
+    default: return "a date or time";
+  }
+}
+
+// Resolves positions: a --set override, or the node's place in the file.
+class Locator {
+ public:
+  Locator(const std::string& file, const std::map<std::string, SourceRef>& overrides)
+      : file_(file), overrides_(overrides) {}
+
+  SourceRef at(const std::string& path, const toml::source_region& src) const {
+    auto it = overrides_.find(path);
+    if (it != overrides_.end()) return it->second;
+    // A path under an override (a table written by --set) has the override's origin.
+    for (const auto& [key, ref] : overrides_)
+      if (path.rfind(key + ".", 0) == 0 || path.rfind(key + "[", 0) == 0) return ref;
+    SourceRef r{file_, static_cast<int>(src.begin.line), static_cast<int>(src.begin.column)};
+    if (r.line == 0) r.file = file_;
+    return r;
+  }
+
+ private:
+  const std::string& file_;
+  const std::map<std::string, SourceRef>& overrides_;
+};
+
+std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + names[i];
+  return out.empty() ? "(none)" : out;
+}
+
+std::string unknown_key_message(const std::string& key, const std::vector<std::string>& valid) {
+  return with_candidates("unknown key", key, valid, "Valid keys here");
+}
+
+Value convert(const toml::node& node, const ParamSpec& spec, const std::string& path,
+              const Locator& loc);
+
+Params check_table(const toml::table& table, const Schema& schema, const std::string& path,
+                   const Locator& loc, const std::set<std::string>& reserved) {
+  Params params;
+  params.set_path(path);
+  params.set_table_where(loc.at(path, table.source()));
+  std::vector<std::string> valid = schema.names();
+  for (const auto& r : reserved) valid.insert(valid.begin(), r);
+  for (auto&& [k, node] : table) {
+    std::string key(k.str());
+    std::string full = path.empty() ? key : path + "." + key;
+    if (reserved.count(key)) continue;
+    const ParamSpec* spec = schema.find(key);
+    if (!spec) throw InputError(loc.at(full, k.source()), full, unknown_key_message(key, valid));
+    params.set(key, convert(node, *spec, full, loc), loc.at(full, node.source()));
+  }
+  for (const auto& spec : schema.specs()) {
+    if (params.has(spec.name)) continue;
+    std::string full = path.empty() ? spec.name : path + "." + spec.name;
+    if (spec.required)
+      throw InputError(params.table_where(), full,
+                       "missing required key: expected " + spec.expectation() + " (" + spec.doc +
+                           ")");
+    if (spec.default_value) params.set(spec.name, *spec.default_value);
+  }
+  return params;
+}
+
+double number_of(const toml::node& node, const ParamSpec& spec, const std::string& path,
+                 const Locator& loc, const char* what) {
+  if (!node.is_number())
+    throw InputError(loc.at(path, node.source()), path,
+                     std::string("expected ") + what + ", got " + node_kind(node));
+  double x = node.is_integer() ? static_cast<double>(node.as_integer()->get())
+                               : node.as_floating_point()->get();
+  std::string bad = spec.range_violation(x);
+  if (!bad.empty())
+    throw InputError(loc.at(path, node.source()), path,
+                     "value " + node_kind(node).substr(node_kind(node).find(' ') + 1) +
+                         " is out of range: expected " + spec.expectation());
+  return x;
+}
+
+Value convert(const toml::node& node, const ParamSpec& spec, const std::string& path,
+              const Locator& loc) {
+  auto wrong = [&]() {
+    return InputError(loc.at(path, node.source()), path,
+                      "expected " + spec.expectation() + ", got " + node_kind(node));
+  };
+  switch (spec.type) {
+    case ParamType::Number: return number_of(node, spec, path, loc, "a number");
+    case ParamType::Integer: {
+      if (!node.is_integer()) throw wrong();
+      std::int64_t i = node.as_integer()->get();
+      if (!spec.range_violation(static_cast<double>(i)).empty())
+        throw InputError(loc.at(path, node.source()), path,
+                         "value " + std::to_string(i) + " is out of range: expected " +
+                             spec.expectation());
+      return i;
+    }
+    case ParamType::Bool:
+      if (!node.is_boolean()) throw wrong();
+      return node.as_boolean()->get();
+    case ParamType::String:
+      if (!node.is_string()) throw wrong();
+      return std::string(*node.as_string());
+    case ParamType::Choice: {
+      if (!node.is_string()) throw wrong();
+      std::string v(*node.as_string());
+      if (std::find(spec.choices.begin(), spec.choices.end(), v) == spec.choices.end()) throw wrong();
+      return v;
+    }
+    case ParamType::NumberArray: {
+      const toml::array* a = node.as_array();
+      if (!a || (spec.length && a->size() != *spec.length)) throw wrong();
+      std::vector<double> out;
+      for (std::size_t i = 0; i < a->size(); ++i)
+        out.push_back(number_of((*a)[i], spec, path + "[" + std::to_string(i) + "]", loc,
+                                "a number"));
+      return out;
+    }
+    case ParamType::StringArray: {
+      const toml::array* a = node.as_array();
+      if (!a) throw wrong();
+      std::vector<std::string> out;
+      for (std::size_t i = 0; i < a->size(); ++i) {
+        const toml::node& e = (*a)[i];
+        bool ok = e.is_string() &&
+                  (spec.choices.empty() || std::find(spec.choices.begin(), spec.choices.end(),
+                                                     std::string(*e.as_string())) !=
+                                               spec.choices.end());
+        if (!ok)
+          throw InputError(loc.at(path, e.source()), path + "[" + std::to_string(i) + "]",
+                           "expected " + spec.expectation() + ", got " + node_kind(e));
+        out.emplace_back(*e.as_string());
+      }
+      return out;
+    }
+    case ParamType::TableArray: {
+      const toml::array* a = node.as_array();
+      if (!a) throw wrong();
+      std::vector<Params> out;
+      for (std::size_t i = 0; i < a->size(); ++i) {
+        std::string sub = path + "[" + std::to_string(i) + "]";
+        const toml::table* t = (*a)[i].as_table();
+        if (!t)
+          throw InputError(loc.at(sub, (*a)[i].source()), sub,
+                           "expected a table, got " + node_kind((*a)[i]));
+        out.push_back(check_table(*t, *spec.element, sub, loc, {}));
+      }
+      return out;
+    }
+  }
+  throw wrong();
+}
+
+toml::table parse_or_throw(const std::string& text, const std::string& name) {
+  try {
+    return toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    throw InputError(SourceRef{name, static_cast<int>(e.source().begin.line),
+                               static_cast<int>(e.source().begin.column)},
+                     "", "malformed TOML: " + std::string(e.description()));
+  }
+}
+
+}  // namespace
+
+SceneDocument SceneDocument::parse_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(SourceRef{path}, "", "cannot read the scene file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_string(buffer.str(), path);
+}
+
+SceneDocument SceneDocument::parse_string(const std::string& text, const std::string& name) {
+  SceneDocument doc;
+  doc.file_ = name;
+  doc.root_ = std::make_shared<toml::table>(parse_or_throw(text, name));
+  return doc;
+}
+
+void SceneDocument::apply_override(const std::string& assignment) {
+  SourceRef origin{"--set " + assignment};
+  auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError(origin, "", "expected --set key=value, for example --set tool.radius=4");
+  std::string path = assignment.substr(0, eq);
+  std::string text = assignment.substr(eq + 1);
+
+  // The value as TOML if it reads as one ("4", "true", "[1, 2]", "\"cw\""), else a bare string.
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + text);
+  } catch (const toml::parse_error&) {
+    parsed = toml::table{{"v", text}};
+  }
+
+  // Walk "a.b[2].c", creating tables on the way.
+  toml::table* table = root_.get();
+  std::size_t start = 0;
+  while (true) {
+    std::size_t dot = path.find('.', start);
+    std::string part = path.substr(start, dot == std::string::npos ? std::string::npos
+                                                                   : dot - start);
+    std::size_t bracket = part.find('[');
+    std::string key = part.substr(0, bracket);
+    if (key.empty()) throw InputError(origin, path, "empty key name");
+    if (dot == std::string::npos) {
+      if (bracket != std::string::npos)
+        throw InputError(origin, path, "cannot replace an array element; set the whole array");
+      parsed.get("v")->visit([&](auto&& node) { table->insert_or_assign(key, node); });
+      break;
+    }
+    if (bracket != std::string::npos) {
+      std::size_t index = std::stoul(part.substr(bracket + 1));
+      toml::array* arr = (*table)[key].as_array();
+      if (!arr || index >= arr->size() || !(*arr)[index].as_table())
+        throw InputError(origin, path, "'" + part + "' is not an element of an array of tables");
+      table = (*arr)[index].as_table();
+    } else {
+      if (!table->contains(key)) table->insert(key, toml::table{});
+      table = (*table)[key].as_table();
+      if (!table) throw InputError(origin, path, "'" + key + "' is not a table");
+    }
+    start = dot + 1;
+  }
+  overrides_[path] = origin;
+}
+
+std::vector<std::string> SceneDocument::plugin_paths() const {
+  std::vector<std::string> out;
+  const toml::node* node = root_->get("plugin_paths");
+  if (!node) return out;
+  Locator loc(file_, overrides_);
+  const toml::array* a = node->as_array();
+  if (!a)
+    throw InputError(loc.at("plugin_paths", node->source()), "plugin_paths",
+                     "expected an array of directory names, got " + node_kind(*node));
+  fs::path base = fs::path(file_).parent_path();
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    if (!(*a)[i].is_string())
+      throw InputError(loc.at("plugin_paths", (*a)[i].source()), "plugin_paths",
+                       "expected a directory name, got " + node_kind((*a)[i]));
+    fs::path p(std::string(*(*a)[i].as_string()));
+    out.push_back((p.is_relative() ? base / p : p).lexically_normal().string());
+  }
+  return out;
+}
+
+Scene SceneDocument::resolve(PluginCatalog& catalog, bool check_unused) const {
+  Locator loc(file_, overrides_);
+  Scene scene;
+  scene.file = file_;
+  scene.plugin_paths = plugin_paths();
+
+  // Top level: only known tables and plugin_paths.
+  std::vector<std::string> top = {"plugin_paths"};
+  for (const auto& [name, schema] : core_schemas()) top.push_back(name);
+  for (const auto& s : slot_table_specs()) top.push_back(s.table);
+  for (auto&& [k, node] : *root_) {
+    std::string key(k.str());
+    if (std::find(top.begin(), top.end(), key) == top.end())
+      throw InputError(loc.at(key, k.source()), key, unknown_key_message(key, top));
+    if (key != "plugin_paths" && !node.is_table())
+      throw InputError(loc.at(key, node.source()), key,
+                       "expected a table [" + key + "], got " + node_kind(node));
+  }
+
+  SourceRef file_only{file_};
+  for (const auto& [name, schema] : core_schemas()) {
+    const toml::table* t = root_->get_as<toml::table>(name);
+    if (!t && kRequiredCore.count(name))
+      throw InputError(file_only, name, "missing required table [" + name + "]");
+    static const toml::table empty;
+    scene.core[name] = check_table(t ? *t : empty, schema, name, loc, {});
+  }
+
+  // Which slot tables this run uses: effects when enabled, [force] when any effect is.
+  bool any_effect = false;
+  for (const auto& spec : slot_table_specs()) {
+    SlotTable st;
+    st.table = spec.table;
+    st.slot = spec.slot;
+    const toml::table* t = root_->get_as<toml::table>(spec.table);
+    st.present = t != nullptr;
+    st.where = t ? loc.at(spec.table, t->source()) : file_only;
+    st.enabled = st.present;
+    if (t && spec.effect) {
+      if (const toml::node* e = t->get("enabled")) {
+        std::string full = std::string(spec.table) + ".enabled";
+        if (!e->is_boolean())
+          throw InputError(loc.at(full, e->source()), full,
+                           "expected a boolean (true or false), got " + node_kind(*e));
+        st.enabled = e->as_boolean()->get();
+      }
+      any_effect = any_effect || st.enabled;
+    }
+    if (!t && spec.required)
+      throw InputError(file_only, spec.table,
+                       std::string("missing required table [") + spec.table +
+                           "] selecting a " + slot_name(spec.slot) + " with plugin = \"...\"");
+    if (t && !spec.effect && t->contains("enabled"))
+      throw InputError(loc.at(std::string(spec.table) + ".enabled", t->get("enabled")->source()),
+                       std::string(spec.table) + ".enabled",
+                       std::string("unknown key: only the effect tables (vibration, deflection, "
+                                   "springback) can be switched off"));
+    scene.slots[spec.table] = std::move(st);
+  }
+  if (any_effect) scene.slots["force"].enabled = scene.slots["force"].present;
+  if (any_effect && !scene.slots["force"].present) {
+    std::string effects = join(scene.enabled_effects());
+    throw InputError(file_only, "force",
+                     "missing table [force]: the enabled effects (" + effects +
+                         ") need a force model, e.g. [force] plugin = \"armarego\"");
+  }
+
+  for (const auto& spec : slot_table_specs()) {
+    SlotTable& st = scene.slots[spec.table];
+    const toml::table* t = root_->get_as<toml::table>(spec.table);
+    bool used = st.enabled || (!t && spec.default_plugin);
+    if (!used && !(check_unused && t)) continue;
+
+    std::string plugin_key = std::string(spec.table) + ".plugin";
+    const toml::node* pn = t ? t->get("plugin") : nullptr;
+    SourceRef plugin_where = pn ? loc.at(plugin_key, pn->source()) : st.where;
+    if (pn && !pn->is_string())
+      throw InputError(plugin_where, plugin_key,
+                       "expected the name of a " + std::string(slot_name(spec.slot)) +
+                           " model, got " + node_kind(*pn));
+    if (pn) {
+      st.plugin = std::string(*pn->as_string());
+    } else if (spec.default_plugin) {
+      st.plugin = spec.default_plugin;
+    } else {
+      throw InputError(st.where, plugin_key,
+                       std::string("missing required key: the name of a ") +
+                           slot_name(spec.slot) + " model");
+    }
+
+    const ModelEntry* entry = nullptr;
+    try {
+      entry = catalog.find(st.plugin);
+    } catch (const PluginError& e) {
+      throw InputError(plugin_where, plugin_key, e.what());
+    }
+    if (!entry || entry->info.slot != spec.slot) {
+      catalog.load_all();
+      std::vector<std::string> known = catalog.names(spec.slot);
+      std::string msg = std::string("unknown ") + slot_name(spec.slot) + " '" + st.plugin + "'";
+      if (entry) msg += " ('" + st.plugin + "' is a " + slot_name(entry->info.slot) + ")";
+      throw InputError(plugin_where, plugin_key,
+                       with_candidates(msg, entry ? std::string() : st.plugin, known,
+                                       std::string("Known ") + slot_name(spec.slot) + " models"));
+    }
+    st.model = entry;
+    static const toml::table empty;
+    std::set<std::string> reserved = {"plugin"};
+    if (spec.effect) reserved.insert("enabled");
+    st.params = check_table(t ? *t : empty, entry->schema, spec.table, loc, reserved);
+    st.params.set_table_where(st.where);
+    if (!used) st.model = nullptr;  // checked only
+  }
+  return scene;
+}
+
+std::vector<std::string> Scene::enabled_effects() const {
+  std::vector<std::string> out;
+  for (const auto& name : effect_tables())
+    if (slots.at(name).enabled) out.push_back(name);
+  return out;
+}
+
+void insert_value(toml::table& out, const std::string& key, const Value& value) {
+  std::visit(
+      [&](const auto& v) {
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, std::vector<double>> ||
+                      std::is_same_v<T, std::vector<std::string>>) {
+          toml::array a;
+          for (const auto& x : v) a.push_back(x);
+          out.insert_or_assign(key, std::move(a));
+        } else if constexpr (std::is_same_v<T, std::vector<Params>>) {
+          toml::array a;
+          for (const auto& p : v) a.push_back(params_to_toml(p));
+          out.insert_or_assign(key, std::move(a));
+        } else {
+          out.insert_or_assign(key, v);
+        }
+      },
+      value);
+}
+
+toml::table params_to_toml(const Params& params) {
+  toml::table t;
+  for (const auto& [key, value] : params.values()) insert_value(t, key, value);
+  return t;
+}
+
+toml::table Scene::to_toml() const {
+  toml::table root;
+  if (!plugin_paths.empty()) {
+    toml::array a;
+    for (const auto& p : plugin_paths) a.push_back(p);
+    root.insert("plugin_paths", std::move(a));
+  }
+  for (const auto& [name, params] : core) root.insert(name, params_to_toml(params));
+  for (const auto& [name, st] : slots) {
+    if (!st.model) continue;
+    toml::table t = params_to_toml(st.params);
+    t.insert("plugin", st.plugin);
+    root.insert(name, std::move(t));
+  }
+  return root;
+}
+
+}  // namespace topomill

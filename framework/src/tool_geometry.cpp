@@ -1,0 +1,19 @@
+#include "topomill/tool_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace topomill {
+
+double ToolGeometry::tooth_angle(int tooth) const {
+  return 2.0 * M_PI * static_cast<double>(tooth) / static_cast<double>(teeth());
+}
+
+Vec3 ToolGeometry::edge_point(int tooth, double alpha, double spindle_angle) const {
+  const double r = radius();
+  const double phi = tooth_angle(tooth) + lag(std::max(alpha, min_polar_angle())) + spindle_angle;
+  const double s = std::sin(alpha);
+  return {r * s * std::cos(phi), r * s * std::sin(phi), -r * std::cos(alpha)};
+}
+
+}  // namespace topomill

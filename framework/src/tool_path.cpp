@@ -1,0 +1,48 @@
+#include "topomill/tool_path.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace topomill {
+
+ToolPath::ToolPath(std::shared_ptr<const SurfaceShape> surface, double offset, double feed_speed,
+                   double spindle_rate, std::vector<Pass> passes)
+    : surface_(std::move(surface)),
+      offset_(offset),
+      feed_speed_(feed_speed),
+      spindle_rate_(spindle_rate),
+      passes_(std::move(passes)),
+      corrections_(passes_.size()) {}
+
+double ToolPath::surface_y(std::size_t p, double t) const {
+  return passes_[p].y_start + feed_speed_ * t;
+}
+
+Vec3 ToolPath::nominal_centre(std::size_t p, double t) const {
+  const double y = surface_y(p, t);
+  const double lambda = surface_->inclination(y);
+  return {passes_[p].x, y + offset_ * std::sin(lambda),
+          surface_->height(y) + offset_ * std::cos(lambda)};
+}
+
+Vec3 ToolPath::correction(std::size_t p, double t) const {
+  const Samples& s = corrections_[p];
+  if (s.values.empty()) return Vec3::Zero();
+  const double u = std::max(0.0, t / s.dt);
+  const std::size_t k = static_cast<std::size_t>(u);
+  if (k + 1 >= s.values.size()) return s.values.back();
+  const double w = u - static_cast<double>(k);
+  return (1.0 - w) * s.values[k] + w * s.values[k + 1];
+}
+
+Vec3 ToolPath::centre(std::size_t p, double t) const {
+  return corrected_ ? Vec3(nominal_centre(p, t) + correction(p, t)) : nominal_centre(p, t);
+}
+
+void ToolPath::set_correction(std::size_t p, double dt, std::vector<Vec3> samples) {
+  for (const auto& v : samples) max_correction_ = std::max(max_correction_, v.cwiseAbs().maxCoeff());
+  corrections_[p] = Samples{dt, std::move(samples)};
+  corrected_ = true;
+}
+
+}  // namespace topomill

@@ -1,0 +1,133 @@
+// The paper's Z-map evaluator (Sec. 4.2-4.3), kept as the reference every faster evaluator is
+// checked against: at each time step every edge point inside the CATW is moved to the workpiece
+// frame and lowers its nearest node.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+#include "topomill/error.hpp"
+#include "topomill/plugin.hpp"
+#include "topomill/topography_evaluator.hpp"
+
+namespace topomill::plugins {
+
+class ZMap : public TopographyEvaluator {
+ public:
+  static Schema schema() {
+    Schema s;
+    s.add_number("catw_margin", "Widening a of the contact angle range (Eq. 43), for vibration "
+                                "and deflection")
+        .at_least(1)
+        .at_most(10)
+        .with_default(1.5);
+    s.add_number("time_step", "Time step; 0 = the paper's rule (Eq. 46) times time_step_fraction")
+        .with_unit("s")
+        .at_least(0)
+        .with_default(0.0);
+    s.add_number("time_step_fraction", "Fraction of Eq. 46's largest step used when time_step = 0")
+        .above(0)
+        .at_most(1)
+        .with_default(0.9);
+    s.add_number("edge_step_fraction",
+                 "Edge point spacing dw as a fraction of the grid spacing (Eq. 44 needs <= 1)")
+        .above(0)
+        .at_most(1)
+        .with_default(1.0);
+    return s;
+  }
+
+  explicit ZMap(const Params& p)
+      : margin_(p.number("catw_margin")),
+        time_step_(p.number("time_step")),
+        time_fraction_(p.number("time_step_fraction")),
+        edge_fraction_(p.number("edge_step_fraction")) {}
+
+  void evaluate(const EvaluationRequest& rq, HeightMap& map, WorkCounts& counts) const override {
+    const ToolGeometry& tool = *rq.tool;
+    const ToolPath& path = *rq.path;
+    const Grid& g = map.grid;
+    const double R = tool.radius();
+    const double cell = std::min(g.dx, g.dy);
+    const double omega = std::abs(path.spindle_rate());
+    const double phi_max_all = std::min(M_PI / 2, rq.lambda_max + margin_ * rq.kappa);
+    // Eq. 46: an edge point moves less than one cell per step.
+    const double dt = time_step_ > 0 ? time_step_
+                                     : time_fraction_ * cell /
+                                           (omega * R * std::max(std::sin(phi_max_all), 1e-12));
+    const double dw = edge_fraction_ * cell;
+
+    struct Step {
+      std::size_t pass;
+      double t;
+    };
+    std::vector<Step> steps;
+    for (std::size_t p = 0; p < path.passes(); ++p) {
+      const auto n = static_cast<std::size_t>(std::ceil(path.pass(p).t_end / dt));
+      for (std::size_t k = 0; k <= n; ++k) steps.push_back({p, static_cast<double>(k) * dt});
+    }
+
+    const unsigned threads = std::max(1u, std::min<unsigned>(rq.threads, 64));
+    std::vector<HeightMap> maps(threads, map);
+    std::vector<std::uint64_t> points(threads, 0), updates(threads, 0);
+    std::atomic<std::size_t> done{0};
+    auto work = [&](unsigned w) {
+      HeightMap& m = maps[w];
+      const std::size_t begin = steps.size() * w / threads, end = steps.size() * (w + 1) / threads;
+      for (std::size_t s = begin; s < end; ++s) {
+        const auto [p, t] = steps[s];
+        const Vec3 centre = path.centre(p, t);
+        const double spindle = path.spindle_angle(p, t);
+        const double lambda = std::abs(path.surface().inclination(path.surface_y(p, t)));
+        const double lo = std::max(0.0, lambda - margin_ * rq.kappa);
+        const double hi = std::min(M_PI / 2, lambda + margin_ * rq.kappa);
+        const int n = std::max(1, static_cast<int>(std::ceil((hi - lo) * R / dw)));  // Eq. 44
+        for (int tooth = 0; tooth < tool.teeth(); ++tooth) {
+          for (int e = 0; e <= n; ++e) {
+            const double alpha = lo + (hi - lo) * e / n;
+            const Vec3 q = centre + tool.edge_point(tooth, alpha, spindle);
+            ++points[w];
+            const double fi = std::round((q.x() - g.x0) / g.dx);
+            const double fj = std::round((q.y() - g.y0) / g.dy);
+            if (fi < 0 || fj < 0 || fi >= static_cast<double>(g.nx) ||
+                fj >= static_cast<double>(g.ny))
+              continue;
+            double& z = m.at(static_cast<std::size_t>(fi), static_cast<std::size_t>(fj));
+            if (q.z() < z) {
+              z = q.z();
+              ++updates[w];
+            }
+          }
+        }
+        if (w == 0 && rq.progress && (s - begin) % 4096 == 0)
+          rq.progress(static_cast<double>(s - begin) / static_cast<double>(end - begin + 1));
+      }
+      done += end - begin;
+    };
+    std::vector<std::thread> pool;
+    for (unsigned w = 1; w < threads; ++w) pool.emplace_back(work, w);
+    work(0);
+    for (auto& th : pool) th.join();
+
+    // Min-reduction: exact, so the map is the same for any thread count.
+    for (std::size_t i = 0; i < map.z.size(); ++i)
+      for (const auto& m : maps) map.z[i] = std::min(map.z[i], m.z[i]);
+    std::uint64_t total_points = 0, total_updates = 0;
+    for (unsigned w = 0; w < threads; ++w) total_points += points[w], total_updates += updates[w];
+    counts["time_steps"] = steps.size();
+    counts["edge_points"] = total_points;
+    counts["updates"] = total_updates;
+    counts["time_step_ns"] = static_cast<std::uint64_t>(dt * 1e9);
+  }
+
+ private:
+  double margin_, time_step_, time_fraction_, edge_fraction_;
+};
+
+}  // namespace topomill::plugins
+
+TOPOMILL_PLUGIN("zmap", "0.1.0") {
+  registrar.add<topomill::TopographyEvaluator, topomill::plugins::ZMap>(
+      "zmap", "The paper's Z-map: nearest node, CATW-limited edge points, Eq. 46 time step "
+              "(reference evaluator)");
+}
