@@ -2,7 +2,9 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "describe.hpp"
 #include "log.hpp"
+#include "pipeline.hpp"
 #include "scene_options.hpp"
 
 namespace topomill::cli {
@@ -18,7 +20,8 @@ int cmd_check(const Args& args) {
     std::cout << opts << "\n";
     return 0;
   }
-  std::cout << loaded.scene->to_toml() << "\n";
+  prepare(*loaded.scene, *loaded.catalog);  // models and layout: the cross-table checks
+  std::cout << to_toml_text(loaded.scene->to_toml());
   log_info("scene '" + loaded.scene->file + "' is valid");
   return 0;
 }

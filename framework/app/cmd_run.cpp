@@ -1,21 +1,57 @@
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "io/run_outputs.hpp"
+#include "log.hpp"
+#include "pipeline.hpp"
 #include "scene_options.hpp"
 
 namespace topomill::cli {
 
 int cmd_run(const Args& args) {
   SceneOptions so;
-  po::options_description opts("topomill run SCENE [--out DIR] [--set key=value ...] [--threads N]");
+  std::string out_dir;
+  unsigned threads = 1;
+  po::options_description opts(
+      "topomill run SCENE [--out DIR] [--set key=value ...] [--threads N]: simulate a scene and "
+      "write summary.json, height maps and a heat map");
+  opts.add_options()("out,o", po::value(&out_dir), "output directory (default: [output] dir, "
+                                                   "else out/<scene name>)")(
+      "threads,t", po::value(&threads)->default_value(1), "worker threads for the evaluator");
   add_scene_options(opts, so);
+  const auto started = std::chrono::steady_clock::now();
   LoadedScene loaded = load_scene(args, opts, so, /*check_unused=*/false);
   if (!loaded.scene) {
     std::cout << opts << "\n";
     return 0;
   }
-  throw std::runtime_error("run: the pipeline is not built yet");
+  if (threads < 1 || threads > 256)
+    throw InputError(SourceRef{"command line"}, "--threads", "expected 1 to 256 threads");
+  const Scene& scene = *loaded.scene;
+  if (out_dir.empty()) out_dir = scene.table("output").string("dir");
+  if (out_dir.empty())
+    out_dir = (std::filesystem::path("out") / std::filesystem::path(scene.file).stem()).string();
+
+  RunOptions options;
+  options.threads = threads;
+  const bool tty = isatty(STDERR_FILENO) && log_level() != LogLevel::Quiet;
+  if (tty)
+    options.progress = [](const std::string& stage, double f) {
+      std::fprintf(stderr, "\r%s %3.0f%%", stage.c_str(), 100 * f);
+      std::fflush(stderr);
+    };
+  RunResult result = run_pipeline(scene, *loaded.catalog, options);
+  if (tty) std::fprintf(stderr, "\r%*s\r", 20, "");
+
+  RunSummary summary = write_run_outputs(scene, result, out_dir, started);
+  std::cout << summary.text;
+  return 0;
 }
 
 }  // namespace topomill::cli

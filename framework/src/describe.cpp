@@ -7,6 +7,10 @@
 namespace topomill {
 
 namespace {
+// 0.3 rather than 0.29999999999999999: 15 significant digits are exact for scene values.
+constexpr auto kJsonFlags =
+    toml::json_formatter::default_flags | toml::format_flags::relaxed_float_precision;
+
 std::string value_text(const Value& v) {
   if (const double* d = std::get_if<double>(&v)) {
     std::ostringstream os;
@@ -99,15 +103,23 @@ std::string schema_markdown(const Schema& schema) {
   return os.str();
 }
 
+std::string to_toml_text(const toml::table& table) {
+  std::ostringstream os;
+  os << toml::toml_formatter{table, toml::toml_formatter::default_flags |
+                                        toml::format_flags::relaxed_float_precision}
+     << "\n";
+  return os.str();
+}
+
 std::string to_json(const toml::table& table) {
   std::ostringstream os;
-  os << toml::json_formatter{table} << "\n";
+  os << toml::json_formatter{table, kJsonFlags} << "\n";
   return os.str();
 }
 
 std::string to_json(const toml::array& array) {
   std::ostringstream os;
-  os << toml::json_formatter{array} << "\n";
+  os << toml::json_formatter{array, kJsonFlags} << "\n";
   return os.str();
 }
 

@@ -17,6 +17,7 @@ std::string schema_text(const Schema& schema, const std::string& indent = "  ");
 std::string schema_markdown(const Schema& schema);
 
 std::string to_json(const toml::table& table);
+std::string to_toml_text(const toml::table& table);
 std::string to_json(const toml::array& array);
 
 }  // namespace topomill

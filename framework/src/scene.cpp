@@ -37,20 +37,34 @@ const std::vector<SlotTableSpec>& slot_table_specs() {
 
 const std::set<std::string> kRequiredCore = {"cutting", "region"};
 
+std::string number_text(double x);
+
+// "Known tool geometry models", "Known force models".
+std::string known_title(Slot slot) {
+  std::string name = slot_name(slot);
+  const std::string suffix = " model";
+  if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+    return "Known " + name + "s";
+  return "Known " + name + " models";
+}
+
 std::string node_kind(const toml::node& n) {
   switch (n.type()) {
     case toml::node_type::table: return "a table";
     case toml::node_type::array: return "an array";
     case toml::node_type::string: return "the string \"" + std::string(*n.as_string()) + "\"";
     case toml::node_type::integer: return "the integer " + std::to_string(n.as_integer()->get());
-    case toml::node_type::floating_point: {
-      std::ostringstream os;
-      os << n.as_floating_point()->get();
-      return "the number " + os.str();
-    }
+    case toml::node_type::floating_point: return "the number " + number_text(n.as_floating_point()->get());
     case toml::node_type::boolean: return n.as_boolean()->get() ? "true" : "false";
     default: return "a date or time";
   }
+}
+
+std::string number_text(double x) {
+  std::ostringstream os;
+  os.precision(12);
+  os << x;
+  return os.str();
 }
 
 // Resolves positions: a --set override, or the node's place in the file.
@@ -125,8 +139,8 @@ double number_of(const toml::node& node, const ParamSpec& spec, const std::strin
   std::string bad = spec.range_violation(x);
   if (!bad.empty())
     throw InputError(loc.at(path, node.source()), path,
-                     "value " + node_kind(node).substr(node_kind(node).find(' ') + 1) +
-                         " is out of range: expected " + spec.expectation());
+                     "value " + number_text(x) + " is out of range: expected " +
+                         spec.expectation());
   return x;
 }
 
@@ -201,6 +215,12 @@ Value convert(const toml::node& node, const ParamSpec& spec, const std::string& 
     }
   }
   throw wrong();
+}
+
+const toml::source_region& key_source(const toml::table& t, const std::string& key) {
+  for (auto&& [k, v] : t)
+    if (k.str() == key) return k.source();
+  return t.source();
 }
 
 toml::table parse_or_throw(const std::string& text, const std::string& name) {
@@ -351,13 +371,14 @@ Scene SceneDocument::resolve(PluginCatalog& catalog, bool check_unused) const {
                        std::string("missing required table [") + spec.table +
                            "] selecting a " + slot_name(spec.slot) + " with plugin = \"...\"");
     if (t && !spec.effect && t->contains("enabled"))
-      throw InputError(loc.at(std::string(spec.table) + ".enabled", t->get("enabled")->source()),
+      throw InputError(loc.at(std::string(spec.table) + ".enabled", key_source(*t, "enabled")),
                        std::string(spec.table) + ".enabled",
                        std::string("unknown key: only the effect tables (vibration, deflection, "
                                    "springback) can be switched off"));
     scene.slots[spec.table] = std::move(st);
   }
-  if (any_effect) scene.slots["force"].enabled = scene.slots["force"].present;
+  // [force] serves the effects: without an enabled effect its library is never opened.
+  scene.slots["force"].enabled = any_effect && scene.slots["force"].present;
   if (any_effect && !scene.slots["force"].present) {
     std::string effects = join(scene.enabled_effects());
     throw InputError(file_only, "force",
@@ -401,7 +422,7 @@ Scene SceneDocument::resolve(PluginCatalog& catalog, bool check_unused) const {
       if (entry) msg += " ('" + st.plugin + "' is a " + slot_name(entry->info.slot) + ")";
       throw InputError(plugin_where, plugin_key,
                        with_candidates(msg, entry ? std::string() : st.plugin, known,
-                                       std::string("Known ") + slot_name(spec.slot) + " models"));
+                                       known_title(spec.slot)));
     }
     st.model = entry;
     static const toml::table empty;

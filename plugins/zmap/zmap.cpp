@@ -2,7 +2,6 @@
 // checked against: at each time step every edge point inside the CATW is moved to the workpiece
 // frame and lowers its nearest node.
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <thread>
 
@@ -70,9 +69,10 @@ class ZMap : public TopographyEvaluator {
     const unsigned threads = std::max(1u, std::min<unsigned>(rq.threads, 64));
     std::vector<HeightMap> maps(threads, map);
     std::vector<std::uint64_t> points(threads, 0), updates(threads, 0);
-    std::atomic<std::size_t> done{0};
     auto work = [&](unsigned w) {
       HeightMap& m = maps[w];
+      std::vector<double> ring, depth, lag;  // per edge point: R sin(alpha), -R cos(alpha), Psi
+      const double tip = tool.min_polar_angle();
       const std::size_t begin = steps.size() * w / threads, end = steps.size() * (w + 1) / threads;
       for (std::size_t s = begin; s < end; ++s) {
         const auto [p, t] = steps[s];
@@ -82,19 +82,30 @@ class ZMap : public TopographyEvaluator {
         const double lo = std::max(0.0, lambda - margin_ * rq.kappa);
         const double hi = std::min(M_PI / 2, lambda + margin_ * rq.kappa);
         const int n = std::max(1, static_cast<int>(std::ceil((hi - lo) * R / dw)));  // Eq. 44
+        ring.resize(n + 1), depth.resize(n + 1), lag.resize(n + 1);
+        for (int e = 0; e <= n; ++e) {
+          const double alpha = lo + (hi - lo) * e / n;
+          ring[e] = R * std::sin(alpha);
+          depth[e] = -R * std::cos(alpha);
+          lag[e] = tool.lag(std::max(alpha, tip));
+        }
         for (int tooth = 0; tooth < tool.teeth(); ++tooth) {
+          const double theta = tool.tooth_angle(tooth) + spindle;
           for (int e = 0; e <= n; ++e) {
-            const double alpha = lo + (hi - lo) * e / n;
-            const Vec3 q = centre + tool.edge_point(tooth, alpha, spindle);
+            // Same point as tool.edge_point(tooth, alpha, spindle), with per-alpha terms hoisted.
+            const double phi = theta + lag[e];
+            const double qx = centre.x() + ring[e] * std::cos(phi);
+            const double qy = centre.y() + ring[e] * std::sin(phi);
+            const double qz = centre.z() + depth[e];
             ++points[w];
-            const double fi = std::round((q.x() - g.x0) / g.dx);
-            const double fj = std::round((q.y() - g.y0) / g.dy);
+            const double fi = std::round((qx - g.x0) / g.dx);
+            const double fj = std::round((qy - g.y0) / g.dy);
             if (fi < 0 || fj < 0 || fi >= static_cast<double>(g.nx) ||
                 fj >= static_cast<double>(g.ny))
               continue;
             double& z = m.at(static_cast<std::size_t>(fi), static_cast<std::size_t>(fj));
-            if (q.z() < z) {
-              z = q.z();
+            if (qz < z) {
+              z = qz;
               ++updates[w];
             }
           }
@@ -102,7 +113,6 @@ class ZMap : public TopographyEvaluator {
         if (w == 0 && rq.progress && (s - begin) % 4096 == 0)
           rq.progress(static_cast<double>(s - begin) / static_cast<double>(end - begin + 1));
       }
-      done += end - begin;
     };
     std::vector<std::thread> pool;
     for (unsigned w = 1; w < threads; ++w) pool.emplace_back(work, w);

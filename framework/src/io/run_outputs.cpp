@@ -1,0 +1,140 @@
+#include "io/run_outputs.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "describe.hpp"
+#include "io/atomic_file.hpp"
+#include "io/height_map_files.hpp"
+#include "io/png_heatmap.hpp"
+#include "log.hpp"
+#include "topomill/version.hpp"
+
+namespace fs = std::filesystem;
+
+namespace topomill {
+
+namespace {
+
+toml::table grid_table(const Grid& g) {
+  return toml::table{{"nx", static_cast<std::int64_t>(g.nx)},
+                     {"ny", static_cast<std::int64_t>(g.ny)},
+                     {"dx_mm", g.dx},
+                     {"dy_mm", g.dy},
+                     {"x0_mm", g.x0},
+                     {"y0_mm", g.y0}};
+}
+
+// Roughness in micrometres (heights), dimensionless (Ssk, Sku, Sdq) and percent (Sdr).
+toml::table roughness_table(const Roughness& r) {
+  toml::table t;
+  for (const auto& [name, v] : r.named()) {
+    const bool height = name == "Sa" || name == "Sq" || name == "Sp" || name == "Sv" || name == "Sz";
+    t.insert(name, height ? v * 1e3 : v);
+  }
+  return t;
+}
+
+}  // namespace
+
+RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
+                             const std::string& out_dir,
+                             std::chrono::steady_clock::time_point started) {
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec)
+    throw InputError(SourceRef{"command line"}, "--out",
+                     "cannot create the output directory '" + out_dir + "': " + ec.message());
+  // A previous summary would vouch for files this run is about to replace: remove it first.
+  fs::remove(fs::path(out_dir) / "summary.json", ec);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool unrolled = scene.table("analysis").string("form") != "none";
+  std::vector<std::string> files;
+  auto path = [&](const std::string& name) {
+    files.push_back(name);
+    return (fs::path(out_dir) / name).string();
+  };
+  for (const auto& format : scene.table("output").strings("formats")) {
+    if (format == "csv") {
+      write_csv(path("height_raw.csv"), result.raw);
+      write_csv(path("height_residual.csv"), result.residual);
+    } else if (format == "gsf") {
+      write_gsf(path("height_raw.gsf"), result.raw, "topomill raw height");
+      write_gsf(path("height_residual.gsf"), result.residual, "topomill residual height");
+    } else if (format == "png") {
+      HeatmapLabels labels;
+      if (!unrolled) labels.y = "y (mm)";
+      write_png_heatmap(path("height_residual.png"), result.residual, labels);
+    }
+  }
+  const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  toml::table timing;
+  toml::array stage_names;
+  for (const auto& s : result.stages) {
+    timing.insert(s.name, s.seconds);
+    stage_names.push_back(s.name);
+  }
+  timing.insert("output", write_s);
+  stage_names.push_back("output");
+  timing.insert("total",
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+
+  toml::table plugins;
+  for (const auto& [table, st] : scene.slots) {
+    if (!st.model) continue;
+    plugins.insert(table, toml::table{{"model", st.plugin},
+                                      {"library", st.model->library->path},
+                                      {"library_version", st.model->library->version}});
+  }
+  toml::table work;
+  for (const auto& [k, v] : result.work) work.insert(k, static_cast<std::int64_t>(v));
+  toml::array effects, file_list;
+  for (const auto& e : result.effects) effects.push_back(e);
+  for (const auto& f : files) file_list.push_back(f);
+
+  toml::table root{
+      {"topomill", toml::table{{"version", kVersion},
+                               {"abi", static_cast<std::int64_t>(kAbiVersion)}}},
+      {"scene", toml::table{{"file", scene.file}, {"name", scene.table("scene").string("name")}}},
+      {"resolved_scene", scene.to_toml()},
+      {"plugins", std::move(plugins)},
+      {"effects", std::move(effects)},
+      {"stages", std::move(stage_names)},
+      {"grid", toml::table{{"spacing_mm", result.layout.spacing},
+                           {"zmap", grid_table(result.raw.grid)},
+                           {"residual", grid_table(result.residual.grid)},
+                           {"form", scene.table("analysis").string("form")},
+                           {"passes", static_cast<std::int64_t>(result.layout.path->passes())}}},
+      {"roughness_um", roughness_table(result.roughness)},
+      {"timing_s", std::move(timing)},
+      {"work", std::move(work)},
+      {"files", std::move(file_list)},
+  };
+  RunSummary summary;
+  summary.json = to_json(root);
+  write_atomically((fs::path(out_dir) / "summary.json").string(),
+                   [&](std::ostream& out) { out << summary.json; });
+
+  std::ostringstream os;
+  os.precision(4);
+  os << "scene    " << scene.file << "\n";
+  os << "grid     " << result.residual.grid.nx << " x " << result.residual.grid.ny
+     << " nodes, spacing " << result.layout.spacing * 1e3 << " um\n";
+  const Roughness& r = result.roughness;
+  os << "Sa " << r.Sa * 1e3 << " um   Sq " << r.Sq * 1e3 << " um   Sz " << r.Sz * 1e3
+     << " um   Ssk " << r.Ssk << "   Sku " << r.Sku << "   Sdq " << r.Sdq << "   Sdr " << r.Sdr
+     << " %\n";
+  os << "time     ";
+  for (const auto& s : result.stages) os << s.name << " " << s.seconds << " s  ";
+  os << "\noutputs  " << out_dir << "/summary.json";
+  for (const auto& f : files) os << " " << f;
+  os << "\n";
+  summary.text = os.str();
+  log_debug("wrote " + std::to_string(files.size() + 1) + " files to " + out_dir);
+  return summary;
+}
+
+}  // namespace topomill

@@ -1,0 +1,118 @@
+#include "layout.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "catw.hpp"
+
+namespace topomill {
+
+namespace {
+constexpr double kDeg = M_PI / 180.0;
+
+double arc_of(const SurfaceShape& s, double y) { return s.arc_coordinate(y, s.height(y)); }
+}  // namespace
+
+double y_at_arc(const SurfaceShape& surface, double s, double y_guess, double span) {
+  double lo = std::max(surface.y_min(), y_guess - span);
+  double hi = std::min(surface.y_max(), y_guess + span);
+  for (int i = 0; i < 200 && hi - lo > 1e-13 * (1.0 + std::abs(lo)); ++i) {
+    double mid = 0.5 * (lo + hi);
+    (arc_of(surface, mid) < s ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+Layout make_layout(const Scene& scene, const ToolGeometry& tool,
+                   std::shared_ptr<const SurfaceShape> surface) {
+  const Params& cut = scene.table("cutting");
+  const Params& region = scene.table("region");
+  const Params& pathp = scene.table("path");
+  const double R = tool.radius();
+  const double ap = cut.number("depth_of_cut");
+  const double ae = cut.number("stepover");
+  const double fz = cut.number("feed_per_tooth");
+  const double rpm = cut.number("spindle_speed");
+  const double h = region.number("spacing");
+  const auto size = region.numbers("size");
+  const double lambda_c = region.number("lambda") * kDeg;
+
+  if (ap > R)
+    throw InputError(cut.where("depth_of_cut"), "cutting.depth_of_cut",
+                     "depth of cut " + std::to_string(ap) + " mm exceeds the ball radius " +
+                         std::to_string(R) + " mm: only the ball may cut");
+  const double r = surface->curvature_radius();
+  if (r < 0 && -r < R)
+    throw InputError(scene.slot("workpiece").where, "workpiece.radius",
+                     "a concave radius of " + std::to_string(-r) +
+                         " mm is smaller than the ball radius " + std::to_string(R) +
+                         " mm: the ball cannot follow it without gouging");
+  if (h > std::min(size[0], size[1]) / 2)
+    throw InputError(region.where("spacing"), "region.spacing",
+                     "spacing is larger than half the patch: expected at least 3 nodes per side");
+
+  Layout L;
+  L.spacing = h;
+  L.kappa = catw_kappa(R, ap, r);
+
+  double y_c = 0;
+  try {
+    y_c = surface->y_at_inclination(lambda_c);
+  } catch (const ParamError& e) {
+    throw InputError(region.where("lambda"), "region.lambda", e.what());
+  }
+  const double s_c = arc_of(*surface, y_c);
+  L.s_lo = s_c - size[1] / 2;
+  L.s_hi = s_c + size[1] / 2;
+  // The patch lies on the machined surface, ap below the uncut one along the normal: its ends
+  // project to y = y_s - ap sin(lambda(y_s)), y_s the uncut surface point at the same arc position.
+  const double span = size[1] + 1.0;
+  auto cut_y = [&](double s) {
+    const double ys = y_at_arc(*surface, s, y_c, span);
+    return ys - ap * std::sin(surface->inclination(ys));
+  };
+  const double y_lo = cut_y(L.s_lo);
+  const double y_hi = cut_y(L.s_hi);
+
+  // Z-map grid: spacing h across the feed; along it h cos(lambda), so that the resolution on the
+  // surface is about h wherever the patch sits.
+  Grid& g = L.grid;
+  g.nx = static_cast<std::size_t>(std::llround(size[0] / h)) + 1;
+  g.dx = size[0] / static_cast<double>(g.nx - 1);
+  g.x0 = -size[0] / 2;
+  const double dy_target = h * std::max(std::cos(lambda_c), 1e-3);
+  g.ny = static_cast<std::size_t>(std::ceil((y_hi - y_lo) / dy_target)) + 1;
+  g.dy = (y_hi - y_lo) / static_cast<double>(g.ny - 1);
+  g.y0 = y_lo;
+
+  // Only the ball's bottom, near the nominal contact point, leaves the final surface: a node is
+  // finished by the nearest pass on either side and by the teeth passing it along the feed. So
+  // the passes run from one step-over before the patch to one after, and each pass feeds from a
+  // few feeds per revolution (and the depth, for the contact point's offset on a slope) before
+  // the patch to as far after it.
+  const long k_lo = static_cast<long>(std::floor(g.x0 / ae)) - 1;
+  const long k_hi = static_cast<long>(std::ceil(-g.x0 / ae)) + 1;
+  const double run = 3 * fz * tool.teeth() + ap + 2 * h;
+  const double y_start = y_lo - run, y_end = y_hi + run;
+  if (y_start <= surface->y_min() || y_end >= surface->y_max())
+    throw InputError(region.where("lambda"), "region.lambda",
+                     "the patch at this lambda, with the tool's run-in and run-out, reaches past "
+                     "the end of the workpiece surface; choose a smaller lambda or a larger radius");
+  for (double y : {y_start, y_lo, y_c, y_hi, y_end})
+    L.lambda_max = std::max(L.lambda_max, std::abs(surface->inclination(y)));
+
+  const int teeth = tool.teeth();
+  const double vf = fz * teeth * rpm / 60.0;
+  const double omega = 2 * M_PI * rpm / 60.0 *
+                       (cut.string("spindle_direction") == "cw" ? -1.0 : 1.0);
+  const double start = pathp.number("start_angle") * kDeg;
+  const double shift = pathp.number("phase_shift") * kDeg;
+  std::vector<ToolPath::Pass> passes;
+  for (long k = k_lo; k <= k_hi; ++k)
+    passes.push_back({static_cast<double>(k) * ae, y_start, (y_end - y_start) / vf,
+                      start + static_cast<double>(k - k_lo) * shift});
+  L.path = std::make_shared<ToolPath>(surface, R - ap, vf, omega, std::move(passes));
+  return L;
+}
+
+}  // namespace topomill

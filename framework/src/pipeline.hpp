@@ -1,0 +1,56 @@
+// scene -> models -> path -> [force -> dynamics, deformation] -> evaluator -> form removal ->
+// parameters. Stages run only when the scene calls for them, and each is timed.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "layout.hpp"
+#include "plugin_catalog.hpp"
+#include "roughness.hpp"
+#include "scene.hpp"
+#include "topomill/surface_shape.hpp"
+#include "topomill/tool_geometry.hpp"
+#include "topomill/topography_evaluator.hpp"
+
+namespace topomill {
+
+struct RunOptions {
+  unsigned threads = 1;
+  // Called with (stage, fraction done); may be empty.
+  std::function<void(const std::string&, double)> progress;
+};
+
+struct StageTime {
+  std::string name;
+  double seconds = 0;
+};
+
+struct RunResult {
+  HeightMap raw;       // Z-map heights (mm) over the XY grid
+  HeightMap residual;  // after form removal (mm), on the unrolled (x, s) grid or the XY grid
+  Roughness roughness; // of `residual`, in mm (convert at the output)
+  std::vector<StageTime> stages;
+  WorkCounts work;
+  std::vector<std::string> effects;  // enabled effect tables that ran
+  Layout layout;
+};
+
+// The models a run uses, constructed, and the grid and tool path: everything that can reject a
+// scene, done before any expensive work (`topomill check` stops here).
+struct Prepared {
+  std::shared_ptr<ToolGeometry> tool;
+  std::shared_ptr<SurfaceShape> surface;
+  std::shared_ptr<TopographyEvaluator> evaluator;
+  Layout layout;
+};
+
+// Throws InputError for scenes the model cannot represent.
+Prepared prepare(const Scene& scene, const PluginCatalog& catalog);
+
+// Throws InputError for scenes the model cannot represent, std::runtime_error if a stage produces
+// a non-finite value.
+RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog, const RunOptions& options);
+
+}  // namespace topomill

@@ -1,0 +1,80 @@
+// The command line as a user meets it: help, listings, check, run and its outputs.
+#include <catch2/catch.hpp>
+#include <filesystem>
+
+#include "support/run_command.hpp"
+
+namespace fs = std::filesystem;
+using testing::run_topomill;
+
+TEST_CASE("every command answers --help and an unknown command is refused", "[cli]") {
+  for (const std::string c : {"run", "check", "plugins", "describe"}) {
+    const auto r = run_topomill(c + " --help");
+    INFO(c);
+    CHECK(r.exit_code == 0);
+    CHECK(r.out.find("--plugin-path") != std::string::npos);
+  }
+  const auto bad = run_topomill("frobnicate");
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.err.find("unknown command 'frobnicate'") != std::string::npos);
+  const auto opt = run_topomill("plugins --no-such-option");
+  CHECK(opt.exit_code == 2);
+  CHECK(opt.err.find("no-such-option") != std::string::npos);
+}
+
+TEST_CASE("plugins lists every built-in model per slot, as text and JSON", "[cli][plugins]") {
+  const auto text = run_topomill("plugins");
+  REQUIRE(text.exit_code == 0);
+  for (const std::string m : {"ball_end_loxodrome", "ball_end_constant_lead", "convex_arc",
+                              "concave_arc", "inclined_plane", "zmap"})
+    CHECK(text.out.find(m) != std::string::npos);
+  CHECK(text.out.find("lib/topomill/plugins/libtopomill_zmap.so") != std::string::npos);
+
+  const auto json = run_topomill("plugins --json");
+  REQUIRE(json.exit_code == 0);
+  CHECK(json.out.find("\"search_path\"") != std::string::npos);
+  CHECK(json.out.find("\"topography_evaluator\"") != std::string::npos);
+  CHECK(json.out.find("\"name\" : \"zmap\"") != std::string::npos);
+}
+
+TEST_CASE("describe shows a model's schema and answers an unknown name with the known ones", "[cli]") {
+  const auto r = run_topomill("describe convex_arc --json");
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("\"name\" : \"radius\"") != std::string::npos);
+  CHECK(r.out.find("\"unit\" : \"mm\"") != std::string::npos);
+  CHECK(r.out.find("\"required\" : true") != std::string::npos);
+
+  const auto bad = run_topomill("describe convex_ark");
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.err.find("did you mean 'convex_arc'?") != std::string::npos);
+  CHECK(bad.err.find("Known models: ball_end_constant_lead") != std::string::npos);
+}
+
+TEST_CASE("check prints the resolved scene with defaults and overrides applied", "[cli][scene]") {
+  const auto r = run_topomill("check configs/examples/quick.toml -q --set cutting.feed_per_tooth=0.2 "
+                              "--set path.phase_shift=90");
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("feed_per_tooth = 0.2") != std::string::npos);
+  CHECK(r.out.find("phase_shift = 90") != std::string::npos);
+  CHECK(r.out.find("spindle_direction = 'cw'") != std::string::npos);  // a default
+  CHECK(r.out.find("catw_margin = 1.5") != std::string::npos);         // a plugin default
+}
+
+TEST_CASE("run writes complete outputs and a summary naming plugins and stages", "[cli][run]") {
+  const std::string out = testing::temp_dir("run_quick");
+  const auto r = run_topomill("run configs/examples/quick.toml -q --out '" + out + "'");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  for (const std::string f : {"summary.json", "height_raw.csv", "height_residual.csv",
+                              "height_raw.gsf", "height_residual.gsf", "height_residual.png"})
+    CHECK(fs::exists(out + "/" + f));
+  for (const auto& e : fs::directory_iterator(out))
+    CHECK(e.path().extension() != ".partial");
+  const std::string summary = testing::read_file(out + "/summary.json");
+  CHECK(summary.find("\"roughness_um\"") != std::string::npos);
+  CHECK(summary.find("\"Sa\"") != std::string::npos);
+  CHECK(summary.find("libtopomill_zmap.so") != std::string::npos);
+  CHECK(summary.find("\"evaluate\"") != std::string::npos);
+  CHECK(summary.find("\"effects\" : []") != std::string::npos);
+  CHECK(r.out.find("Sa ") != std::string::npos);
+}

@@ -1,0 +1,106 @@
+// Deliberately broken plugins are refused with precise messages, and the program goes on.
+#include <catch2/catch.hpp>
+#include <fstream>
+
+#include "support/run_command.hpp"
+
+using testing::fixture_dir;
+using testing::run_topomill;
+
+namespace {
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// A scene whose workpiece is `plugin` (no keys besides), found through `plugin_paths`.
+std::string scene_with_workpiece(const std::string& name, const std::string& plugin,
+                                 const std::string& plugin_dir) {
+  const std::string path = testing::temp_dir(name) + ".toml";
+  std::ofstream(path) << "plugin_paths = ['" << plugin_dir << "']\n"
+                      << "[tool]\nplugin = 'ball_end_loxodrome'\nradius = 5.0\n"
+                      << "[workpiece]\nplugin = '" << plugin << "'\n"
+                      << "[cutting]\nspindle_speed = 4000\nfeed_per_tooth = 0.1\n"
+                      << "depth_of_cut = 0.3\nstepover = 0.3\n"
+                      << "[region]\nlambda = 0.0\nsize = [0.1, 0.1]\nspacing = 0.02\n";
+  return path;
+}
+}  // namespace
+
+TEST_CASE("a third-party plugin is found by --plugin-path, the environment and the scene",
+          "[plugins]") {
+  const auto listed = run_topomill("plugins -P '" + fixture_dir("good") + "'");
+  REQUIRE(listed.exit_code == 0);
+  CHECK(contains(listed.out, "fixture_good"));
+  CHECK(contains(listed.out, "fixture_good 9.9.9"));
+
+  const auto env = run_topomill("describe fixture_good", "TOPOMILL_PLUGIN_PATH='" + fixture_dir("good") + "'");
+  CHECK(env.exit_code == 0);
+  CHECK(contains(env.out, "height_offset"));
+
+  const auto scene = scene_with_workpiece("scene_paths", "fixture_good", fixture_dir("good"));
+  const auto checked = run_topomill("check '" + scene + "' -v");
+  INFO(checked.err);
+  CHECK(checked.exit_code == 0);
+  CHECK(contains(checked.err, "workpiece: fixture_good from " + fixture_dir("good")));
+}
+
+TEST_CASE("a library without the entry point is refused and the listing goes on", "[plugins]") {
+  const auto r = run_topomill("plugins -P '" + fixture_dir("no_entry") + "'");
+  CHECK(r.exit_code == 0);
+  CHECK(contains(r.out, "refused libraries"));
+  CHECK(contains(r.out, "libtopomill_fixture_no_entry.so: not a topomill plugin: it exports no "
+                        "entry point 'topomill_plugin_entry_v1'"));
+  CHECK(contains(r.out, "zmap"));  // the built-in ones are still there
+}
+
+TEST_CASE("the ABI handshake refuses a plugin built for another ABI, naming both", "[plugins]") {
+  const auto r = run_topomill("plugins -P '" + fixture_dir("wrong_abi") + "'");
+  CHECK(r.exit_code == 0);
+  CHECK(contains(r.out, fixture_dir("wrong_abi") + "/libtopomill_fixture_wrong_abi.so: built for "
+                        "topomill plugin ABI 999, this program provides ABI 1"));
+  // Asked for by name, the refusal is the error.
+  const auto scene = scene_with_workpiece("wrong_abi", "fixture_wrong_abi", fixture_dir("wrong_abi"));
+  const auto run = run_topomill("check '" + scene + "'");
+  CHECK(run.exit_code == 2);
+  CHECK(contains(run.err, "key 'workpiece.plugin': model 'fixture_wrong_abi' cannot be loaded"));
+  CHECK(contains(run.err, "built for topomill plugin ABI 999"));
+}
+
+TEST_CASE("the record-size handshake refuses a mismatched layout", "[plugins]") {
+  const auto r = run_topomill("plugins -P '" + fixture_dir("wrong_size") + "'");
+  CHECK(r.exit_code == 0);
+  CHECK(contains(r.out, "record size mismatch for ModelInfo: the plugin has 1 bytes, this program"));
+}
+
+TEST_CASE("a registration that throws is refused", "[plugins]") {
+  const auto r = run_topomill("plugins -P '" + fixture_dir("bad_registration") + "'");
+  CHECK(r.exit_code == 0);
+  CHECK(contains(r.out, "registration failed: fixture: registration refuses"));
+}
+
+TEST_CASE("a model registered by two libraries is an error naming both", "[plugins]") {
+  const auto r = run_topomill("plugins -P '" + fixture_dir("duplicate") + "'");
+  CHECK_FALSE(r.crashed);
+  CHECK(r.exit_code == 2);
+  CHECK(contains(r.err, "model 'fixture_duplicate' is registered twice: by '" +
+                            fixture_dir("duplicate") + "/libtopomill_fixture_duplicate_a.so' and by '" +
+                            fixture_dir("duplicate") + "/libtopomill_fixture_duplicate_b.so'"));
+}
+
+TEST_CASE("a throwing constructor fails the run cleanly and a ParamError points at the scene",
+          "[plugins]") {
+  const auto scene = scene_with_workpiece("throwing", "fixture_throwing", fixture_dir("throwing"));
+  const auto r = run_topomill("check '" + scene + "'");
+  CHECK_FALSE(r.crashed);
+  CHECK(r.exit_code == 1);
+  CHECK(contains(r.err, "model 'fixture_throwing' from '" + fixture_dir("throwing") +
+                            "/libtopomill_fixture_throwing.so' failed to construct: fixture: this "
+                            "constructor always fails"));
+
+  const auto picky = run_topomill("check configs/examples/quick.toml -P '" + fixture_dir("throwing") +
+                                  "' --set workpiece.plugin=fixture_picky");
+  CHECK_FALSE(picky.crashed);
+  CHECK(picky.exit_code == 2);
+  CHECK(contains(picky.err, "configs/examples/quick.toml:14:10: error: key 'workpiece.radius': "
+                            "fixture: 50 mm is refused"));
+}

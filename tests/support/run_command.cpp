@@ -1,0 +1,48 @@
+#include "support/run_command.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace testing {
+
+namespace fs = std::filesystem;
+
+std::string source_dir() { return TOPOMILL_SOURCE_DIR; }
+std::string fixture_dir(const std::string& name) { return std::string(TOPOMILL_FIXTURE_DIR) + "/" + name; }
+
+std::string temp_dir(const std::string& name) {
+  fs::path p = fs::temp_directory_path() / ("topomill_test_" + std::to_string(getpid())) / name;
+  fs::remove_all(p);
+  fs::create_directories(p.parent_path());
+  return p.string();
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+CommandResult run_topomill(const std::string& args, const std::string& env) {
+  const std::string dir = temp_dir("capture");
+  fs::create_directories(dir);
+  const std::string out = dir + "/out", err = dir + "/err";
+  const std::string cmd = "cd '" + source_dir() + "' && " + (env.empty() ? "" : env + " ") +
+                          "'" TOPOMILL_EXE "' " + args + " >'" + out + "' 2>'" + err + "'";
+  const int status = std::system(cmd.c_str());
+  CommandResult r;
+  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  // The shell reports a child killed by signal N as exit status 128 + N.
+  r.crashed = WIFSIGNALED(status) || (r.exit_code > 128 && r.exit_code < 160);
+  r.out = read_file(out);
+  r.err = read_file(err);
+  return r;
+}
+
+}  // namespace testing

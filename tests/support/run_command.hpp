@@ -1,0 +1,24 @@
+// Runs the topomill program as a user would and captures what it says.
+#pragma once
+
+#include <string>
+
+namespace testing {
+
+struct CommandResult {
+  int exit_code = -1;    // the process's exit status; -1 if it did not exit normally
+  bool crashed = false;  // killed by a signal (segfault, abort)
+  std::string out, err;
+};
+
+// `args` is appended to the program path as shell words; runs in the source directory.
+// `env` (e.g. "TOPOMILL_PLUGIN_PATH=/x") is prefixed to the command when not empty.
+CommandResult run_topomill(const std::string& args, const std::string& env = "");
+
+std::string source_dir();
+std::string fixture_dir(const std::string& name);
+// A fresh empty directory under the build tree's temporary area.
+std::string temp_dir(const std::string& name);
+std::string read_file(const std::string& path);
+
+}  // namespace testing
