@@ -24,8 +24,9 @@ po::variables_map parse(const std::vector<std::string>& args, const po::options_
   } catch (const po::error& e) {
     throw InputError(SourceRef{"command line"}, "", std::string(e.what()) + " (see --help)");
   }
-  set_log_level(common.quiet ? LogLevel::Quiet
-                             : common.verbose ? LogLevel::Verbose : LogLevel::Normal);
+  set_log_level(common.quiet     ? LogLevel::Quiet
+                : common.verbose ? LogLevel::Verbose
+                                 : LogLevel::Normal);
   return vm;
 }
 

@@ -21,9 +21,10 @@ int cmd_run(const Args& args) {
   po::options_description opts(
       "topomill run SCENE [--out DIR] [--set key=value ...] [--threads N]: simulate a scene and "
       "write summary.json, height maps and a heat map");
-  opts.add_options()("out,o", po::value(&out_dir), "output directory (default: [output] dir, "
-                                                   "else out/<scene name>)")(
-      "threads,t", po::value(&threads)->default_value(1), "worker threads for the evaluator");
+  opts.add_options()("out,o", po::value(&out_dir),
+                     "output directory (default: [output] dir, "
+                     "else out/<scene name>)")("threads,t", po::value(&threads)->default_value(1),
+                                               "worker threads for the evaluator");
   add_scene_options(opts, so);
   const auto started = std::chrono::steady_clock::now();
   LoadedScene loaded = load_scene(args, opts, so, /*check_unused=*/false);

@@ -22,7 +22,8 @@ const Command kCommands[] = {
 
 void usage(std::ostream& os) {
   os << "usage: topomill COMMAND [OPTIONS]\n\ncommands:\n";
-  for (const auto& c : kCommands) os << "  " << c.name << std::string(10 - std::string(c.name).size(), ' ') << c.summary << "\n";
+  for (const auto& c : kCommands)
+    os << "  " << c.name << std::string(10 - std::string(c.name).size(), ' ') << c.summary << "\n";
   os << "\n'topomill COMMAND --help' shows a command's options.\n"
         "exit codes: 0 ok, 1 internal failure, 2 bad input (scene, option, file)\n";
 }

@@ -81,9 +81,8 @@ Schema output_schema() {
 
 const std::vector<std::pair<std::string, Schema>>& core_schemas() {
   static const std::vector<std::pair<std::string, Schema>> all = {
-      {"scene", scene_schema()},       {"cutting", cutting_schema()},
-      {"path", path_schema()},         {"region", region_schema()},
-      {"analysis", analysis_schema()}, {"output", output_schema()}};
+      {"scene", scene_schema()},   {"cutting", cutting_schema()},   {"path", path_schema()},
+      {"region", region_schema()}, {"analysis", analysis_schema()}, {"output", output_schema()}};
   return all;
 }
 

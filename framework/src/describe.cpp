@@ -46,8 +46,8 @@ std::string default_text(const ParamSpec& s) {
 toml::array schema_to_toml(const Schema& schema) {
   toml::array params;
   for (const auto& s : schema.specs()) {
-    toml::table p{{"name", s.name}, {"type", type_name(s.type)}, {"doc", s.doc},
-                  {"required", s.required}};
+    toml::table p{
+        {"name", s.name}, {"type", type_name(s.type)}, {"doc", s.doc}, {"required", s.required}};
     if (!s.unit.empty()) p.insert("unit", s.unit);
     if (s.default_value) insert_value(p, "default", *s.default_value);
     if (s.min) p.insert("min", *s.min), p.insert("min_exclusive", s.min_exclusive);

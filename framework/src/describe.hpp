@@ -2,8 +2,8 @@
 // docs/ is generated from the Markdown form).
 #pragma once
 
-#include <string>
 #include <toml++/toml.h>
+#include <string>
 
 #include "plugin_catalog.hpp"
 #include "topomill/params.hpp"

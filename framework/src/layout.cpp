@@ -10,7 +10,9 @@ namespace topomill {
 namespace {
 constexpr double kDeg = M_PI / 180.0;
 
-double arc_of(const SurfaceShape& s, double y) { return s.arc_coordinate(y, s.height(y)); }
+double arc_of(const SurfaceShape& s, double y) {
+  return s.arc_coordinate(y, s.height(y));
+}
 }  // namespace
 
 double y_at_arc(const SurfaceShape& surface, double s, double y_guess, double span) {
@@ -95,16 +97,17 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   const double run = 3 * fz * tool.teeth() + ap + 2 * h;
   const double y_start = y_lo - run, y_end = y_hi + run;
   if (y_start <= surface->y_min() || y_end >= surface->y_max())
-    throw InputError(region.where("lambda"), "region.lambda",
-                     "the patch at this lambda, with the tool's run-in and run-out, reaches past "
-                     "the end of the workpiece surface; choose a smaller lambda or a larger radius");
+    throw InputError(
+        region.where("lambda"), "region.lambda",
+        "the patch at this lambda, with the tool's run-in and run-out, reaches past "
+        "the end of the workpiece surface; choose a smaller lambda or a larger radius");
   for (double y : {y_start, y_lo, y_c, y_hi, y_end})
     L.lambda_max = std::max(L.lambda_max, std::abs(surface->inclination(y)));
 
   const int teeth = tool.teeth();
   const double vf = fz * teeth * rpm / 60.0;
-  const double omega = 2 * M_PI * rpm / 60.0 *
-                       (cut.string("spindle_direction") == "cw" ? -1.0 : 1.0);
+  const double omega =
+      2 * M_PI * rpm / 60.0 * (cut.string("spindle_direction") == "cw" ? -1.0 : 1.0);
   const double start = pathp.number("start_angle") * kDeg;
   const double shift = pathp.number("phase_shift") * kDeg;
   std::vector<ToolPath::Pass> passes;

@@ -13,11 +13,11 @@
 namespace topomill {
 
 struct Layout {
-  Grid grid;               // Z-map nodes over the XY projection of the patch
+  Grid grid;                  // Z-map nodes over the XY projection of the patch
   double s_lo = 0, s_hi = 0;  // arc-length extent of the patch along the surface (mm)
-  double spacing = 0;      // requested node spacing on the surface (mm)
-  double kappa = 0;        // CATW half-width (rad)
-  double lambda_max = 0;   // largest |lambda| under the tool along the path (rad)
+  double spacing = 0;         // requested node spacing on the surface (mm)
+  double kappa = 0;           // CATW half-width (rad)
+  double lambda_max = 0;      // largest |lambda| under the tool along the path (rad)
   std::shared_ptr<ToolPath> path;
 };
 

@@ -14,14 +14,20 @@ void emit(const char* tag, const std::string& message) {
 }
 }  // namespace
 
-void set_log_level(LogLevel level) { g_level = level; }
-LogLevel log_level() { return g_level; }
+void set_log_level(LogLevel level) {
+  g_level = level;
+}
+LogLevel log_level() {
+  return g_level;
+}
 void log_info(const std::string& message) {
   if (g_level >= LogLevel::Normal) emit("", message);
 }
 void log_debug(const std::string& message) {
   if (g_level >= LogLevel::Verbose) emit("", message);
 }
-void log_warning(const std::string& message) { emit("warning: ", message); }
+void log_warning(const std::string& message) {
+  emit("warning: ", message);
+}
 
 }  // namespace topomill

@@ -7,31 +7,43 @@ Model::~Model() = default;
 
 const char* slot_name(Slot slot) {
   switch (slot) {
-    case Slot::ToolGeometry: return "tool geometry";
-    case Slot::SurfaceShape: return "surface shape";
-    case Slot::ForceModel: return "force model";
-    case Slot::DynamicsModel: return "dynamics model";
-    case Slot::Deformation: return "deformation";
-    case Slot::Evaluator: return "topography evaluator";
+    case Slot::ToolGeometry:
+      return "tool geometry";
+    case Slot::SurfaceShape:
+      return "surface shape";
+    case Slot::ForceModel:
+      return "force model";
+    case Slot::DynamicsModel:
+      return "dynamics model";
+    case Slot::Deformation:
+      return "deformation";
+    case Slot::Evaluator:
+      return "topography evaluator";
   }
   return "?";
 }
 
 const char* slot_id(Slot slot) {
   switch (slot) {
-    case Slot::ToolGeometry: return "tool_geometry";
-    case Slot::SurfaceShape: return "surface_shape";
-    case Slot::ForceModel: return "force_model";
-    case Slot::DynamicsModel: return "dynamics_model";
-    case Slot::Deformation: return "deformation";
-    case Slot::Evaluator: return "topography_evaluator";
+    case Slot::ToolGeometry:
+      return "tool_geometry";
+    case Slot::SurfaceShape:
+      return "surface_shape";
+    case Slot::ForceModel:
+      return "force_model";
+    case Slot::DynamicsModel:
+      return "dynamics_model";
+    case Slot::Deformation:
+      return "deformation";
+    case Slot::Evaluator:
+      return "topography_evaluator";
   }
   return "?";
 }
 
 std::vector<Slot> all_slots() {
-  return {Slot::ToolGeometry, Slot::SurfaceShape,  Slot::ForceModel,
-          Slot::DynamicsModel, Slot::Deformation, Slot::Evaluator};
+  return {Slot::ToolGeometry,  Slot::SurfaceShape, Slot::ForceModel,
+          Slot::DynamicsModel, Slot::Deformation,  Slot::Evaluator};
 }
 
 }  // namespace topomill

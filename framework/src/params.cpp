@@ -7,14 +7,22 @@ namespace topomill {
 
 const char* type_name(ParamType type) {
   switch (type) {
-    case ParamType::Number: return "number";
-    case ParamType::Integer: return "integer";
-    case ParamType::Bool: return "boolean";
-    case ParamType::String: return "string";
-    case ParamType::Choice: return "choice";
-    case ParamType::NumberArray: return "array of numbers";
-    case ParamType::StringArray: return "array of strings";
-    case ParamType::TableArray: return "array of tables";
+    case ParamType::Number:
+      return "number";
+    case ParamType::Integer:
+      return "integer";
+    case ParamType::Bool:
+      return "boolean";
+    case ParamType::String:
+      return "string";
+    case ParamType::Choice:
+      return "choice";
+    case ParamType::NumberArray:
+      return "array of numbers";
+    case ParamType::StringArray:
+      return "array of strings";
+    case ParamType::TableArray:
+      return "array of tables";
   }
   return "?";
 }
@@ -98,11 +106,18 @@ std::string ParamSpec::expectation() const {
       for (std::size_t i = 0; i < choices.size(); ++i) out += (i ? ", " : "") + choices[i];
       return out;
     }
-    case ParamType::TableArray: return "an array of tables";
-    case ParamType::Integer: out = "an integer"; break;
-    case ParamType::Bool: return "a boolean (true or false)";
-    case ParamType::String: return "a string";
-    case ParamType::Number: out = "a number"; break;
+    case ParamType::TableArray:
+      return "an array of tables";
+    case ParamType::Integer:
+      out = "an integer";
+      break;
+    case ParamType::Bool:
+      return "a boolean (true or false)";
+    case ParamType::String:
+      return "a string";
+    case ParamType::Number:
+      out = "a number";
+      break;
   }
   if (type != ParamType::NumberArray && !range_text().empty()) out += " " + range_text();
   if (!unit.empty()) out += " (" + unit + ")";
@@ -190,7 +205,9 @@ double Params::number(const std::string& key) const {
 std::int64_t Params::integer(const std::string& key) const {
   return get<std::int64_t>(key, "an integer");
 }
-bool Params::boolean(const std::string& key) const { return get<bool>(key, "a boolean"); }
+bool Params::boolean(const std::string& key) const {
+  return get<bool>(key, "a boolean");
+}
 const std::string& Params::string(const std::string& key) const {
   return get<std::string>(key, "a string");
 }

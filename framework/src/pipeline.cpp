@@ -23,8 +23,8 @@ class StageClock {
       std::string name;
       std::chrono::steady_clock::time_point t0;
       ~Record() {
-        out.push_back({name, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
-                                 .count()});
+        out.push_back(
+            {name, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});
         log_debug("stage '" + name + "': " + std::to_string(out.back().seconds) + " s");
       }
     } record{out_, name, t0};

@@ -28,9 +28,9 @@ struct StageTime {
 };
 
 struct RunResult {
-  HeightMap raw;       // Z-map heights (mm) over the XY grid
-  HeightMap residual;  // after form removal (mm), on the unrolled (x, s) grid or the XY grid
-  Roughness roughness; // of `residual`, in mm (convert at the output)
+  HeightMap raw;        // Z-map heights (mm) over the XY grid
+  HeightMap residual;   // after form removal (mm), on the unrolled (x, s) grid or the XY grid
+  Roughness roughness;  // of `residual`, in mm (convert at the output)
   std::vector<StageTime> stages;
   WorkCounts work;
   std::vector<std::string> effects;  // enabled effect tables that ran

@@ -138,8 +138,8 @@ const ModelEntry* PluginCatalog::find(const std::string& name) {
     known = by_name_.find(name);
     if (known != by_name_.end()) return known->second;
     if (refused_.size() > refused_before)
-      throw PluginError("model '" + name + "' cannot be loaded: library '" +
-                        refused_.back().path + "' " + refused_.back().reason);
+      throw PluginError("model '" + name + "' cannot be loaded: library '" + refused_.back().path +
+                        "' " + refused_.back().reason);
   }
   load_all();
   known = by_name_.find(name);

@@ -42,7 +42,8 @@ class PluginCatalog {
  public:
   struct Dir {
     std::string path;
-    std::string origin;  // "--plugin-path", "scene plugin_paths", "TOPOMILL_PLUGIN_PATH", "built-in"
+    std::string
+        origin;  // "--plugin-path", "scene plugin_paths", "TOPOMILL_PLUGIN_PATH", "built-in"
   };
 
   explicit PluginCatalog(std::vector<Dir> search_path);
@@ -75,8 +76,7 @@ class PluginCatalog {
   }
 
  private:
-  std::unique_ptr<Model> construct(const ModelEntry& entry, const Params& params,
-                                    Slot slot) const;
+  std::unique_ptr<Model> construct(const ModelEntry& entry, const Params& params, Slot slot) const;
   void load(const std::string& path);
   void refuse(const std::string& path, const std::string& reason);
 

@@ -1,13 +1,13 @@
 #include "roughness.hpp"
 
-#include <algorithm>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace topomill {
 
 std::map<std::string, double> Roughness::named() const {
-  return {{"Sa", Sa},   {"Sq", Sq},   {"Sp", Sp},   {"Sv", Sv},   {"Sz", Sz},
+  return {{"Sa", Sa},   {"Sq", Sq},   {"Sp", Sp},   {"Sv", Sv},  {"Sz", Sz},
           {"Ssk", Ssk}, {"Sku", Sku}, {"Sdq", Sdq}, {"Sdr", Sdr}};
 }
 

@@ -43,20 +43,28 @@ std::string number_text(double x);
 std::string known_title(Slot slot) {
   std::string name = slot_name(slot);
   const std::string suffix = " model";
-  if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+  if (name.size() > suffix.size() &&
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
     return "Known " + name + "s";
   return "Known " + name + " models";
 }
 
 std::string node_kind(const toml::node& n) {
   switch (n.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "the string \"" + std::string(*n.as_string()) + "\"";
-    case toml::node_type::integer: return "the integer " + std::to_string(n.as_integer()->get());
-    case toml::node_type::floating_point: return "the number " + number_text(n.as_floating_point()->get());
-    case toml::node_type::boolean: return n.as_boolean()->get() ? "true" : "false";
-    default: return "a date or time";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "the string \"" + std::string(*n.as_string()) + "\"";
+    case toml::node_type::integer:
+      return "the integer " + std::to_string(n.as_integer()->get());
+    case toml::node_type::floating_point:
+      return "the number " + number_text(n.as_floating_point()->get());
+    case toml::node_type::boolean:
+      return n.as_boolean()->get() ? "true" : "false";
+    default:
+      return "a date or time";
   }
 }
 
@@ -121,9 +129,9 @@ Params check_table(const toml::table& table, const Schema& schema, const std::st
     if (params.has(spec.name)) continue;
     std::string full = path.empty() ? spec.name : path + "." + spec.name;
     if (spec.required)
-      throw InputError(params.table_where(), full,
-                       "missing required key: expected " + spec.expectation() + " (" + spec.doc +
-                           ")");
+      throw InputError(
+          params.table_where(), full,
+          "missing required key: expected " + spec.expectation() + " (" + spec.doc + ")");
     if (spec.default_value) params.set(spec.name, *spec.default_value);
   }
   return params;
@@ -138,9 +146,9 @@ double number_of(const toml::node& node, const ParamSpec& spec, const std::strin
                                : node.as_floating_point()->get();
   std::string bad = spec.range_violation(x);
   if (!bad.empty())
-    throw InputError(loc.at(path, node.source()), path,
-                     "value " + number_text(x) + " is out of range: expected " +
-                         spec.expectation());
+    throw InputError(
+        loc.at(path, node.source()), path,
+        "value " + number_text(x) + " is out of range: expected " + spec.expectation());
   return x;
 }
 
@@ -151,14 +159,15 @@ Value convert(const toml::node& node, const ParamSpec& spec, const std::string& 
                       "expected " + spec.expectation() + ", got " + node_kind(node));
   };
   switch (spec.type) {
-    case ParamType::Number: return number_of(node, spec, path, loc, "a number");
+    case ParamType::Number:
+      return number_of(node, spec, path, loc, "a number");
     case ParamType::Integer: {
       if (!node.is_integer()) throw wrong();
       std::int64_t i = node.as_integer()->get();
       if (!spec.range_violation(static_cast<double>(i)).empty())
-        throw InputError(loc.at(path, node.source()), path,
-                         "value " + std::to_string(i) + " is out of range: expected " +
-                             spec.expectation());
+        throw InputError(
+            loc.at(path, node.source()), path,
+            "value " + std::to_string(i) + " is out of range: expected " + spec.expectation());
       return i;
     }
     case ParamType::Bool:
@@ -170,7 +179,8 @@ Value convert(const toml::node& node, const ParamSpec& spec, const std::string& 
     case ParamType::Choice: {
       if (!node.is_string()) throw wrong();
       std::string v(*node.as_string());
-      if (std::find(spec.choices.begin(), spec.choices.end(), v) == spec.choices.end()) throw wrong();
+      if (std::find(spec.choices.begin(), spec.choices.end(), v) == spec.choices.end())
+        throw wrong();
       return v;
     }
     case ParamType::NumberArray: {
@@ -178,8 +188,8 @@ Value convert(const toml::node& node, const ParamSpec& spec, const std::string& 
       if (!a || (spec.length && a->size() != *spec.length)) throw wrong();
       std::vector<double> out;
       for (std::size_t i = 0; i < a->size(); ++i)
-        out.push_back(number_of((*a)[i], spec, path + "[" + std::to_string(i) + "]", loc,
-                                "a number"));
+        out.push_back(
+            number_of((*a)[i], spec, path + "[" + std::to_string(i) + "]", loc, "a number"));
       return out;
     }
     case ParamType::StringArray: {
@@ -188,10 +198,9 @@ Value convert(const toml::node& node, const ParamSpec& spec, const std::string& 
       std::vector<std::string> out;
       for (std::size_t i = 0; i < a->size(); ++i) {
         const toml::node& e = (*a)[i];
-        bool ok = e.is_string() &&
-                  (spec.choices.empty() || std::find(spec.choices.begin(), spec.choices.end(),
-                                                     std::string(*e.as_string())) !=
-                                               spec.choices.end());
+        bool ok = e.is_string() && (spec.choices.empty() ||
+                                    std::find(spec.choices.begin(), spec.choices.end(),
+                                              std::string(*e.as_string())) != spec.choices.end());
         if (!ok)
           throw InputError(loc.at(path, e.source()), path + "[" + std::to_string(i) + "]",
                            "expected " + spec.expectation() + ", got " + node_kind(e));
@@ -271,8 +280,8 @@ void SceneDocument::apply_override(const std::string& assignment) {
   std::size_t start = 0;
   while (true) {
     std::size_t dot = path.find('.', start);
-    std::string part = path.substr(start, dot == std::string::npos ? std::string::npos
-                                                                   : dot - start);
+    std::string part =
+        path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
     std::size_t bracket = part.find('[');
     std::string key = part.substr(0, bracket);
     if (key.empty()) throw InputError(origin, path, "empty key name");
@@ -368,8 +377,8 @@ Scene SceneDocument::resolve(PluginCatalog& catalog, bool check_unused) const {
     }
     if (!t && spec.required)
       throw InputError(file_only, spec.table,
-                       std::string("missing required table [") + spec.table +
-                           "] selecting a " + slot_name(spec.slot) + " with plugin = \"...\"");
+                       std::string("missing required table [") + spec.table + "] selecting a " +
+                           slot_name(spec.slot) + " with plugin = \"...\"");
     if (t && !spec.effect && t->contains("enabled"))
       throw InputError(loc.at(std::string(spec.table) + ".enabled", key_source(*t, "enabled")),
                        std::string(spec.table) + ".enabled",
@@ -404,9 +413,9 @@ Scene SceneDocument::resolve(PluginCatalog& catalog, bool check_unused) const {
     } else if (spec.default_plugin) {
       st.plugin = spec.default_plugin;
     } else {
-      throw InputError(st.where, plugin_key,
-                       std::string("missing required key: the name of a ") +
-                           slot_name(spec.slot) + " model");
+      throw InputError(
+          st.where, plugin_key,
+          std::string("missing required key: the name of a ") + slot_name(spec.slot) + " model");
     }
 
     const ModelEntry* entry = nullptr;
@@ -420,9 +429,9 @@ Scene SceneDocument::resolve(PluginCatalog& catalog, bool check_unused) const {
       std::vector<std::string> known = catalog.names(spec.slot);
       std::string msg = std::string("unknown ") + slot_name(spec.slot) + " '" + st.plugin + "'";
       if (entry) msg += " ('" + st.plugin + "' is a " + slot_name(entry->info.slot) + ")";
-      throw InputError(plugin_where, plugin_key,
-                       with_candidates(msg, entry ? std::string() : st.plugin, known,
-                                       known_title(spec.slot)));
+      throw InputError(
+          plugin_where, plugin_key,
+          with_candidates(msg, entry ? std::string() : st.plugin, known, known_title(spec.slot)));
     }
     st.model = entry;
     static const toml::table empty;

@@ -2,10 +2,10 @@
 // resolve plugin names, before anything is constructed.
 #pragma once
 
+#include <toml++/toml.h>
 #include <map>
 #include <memory>
 #include <string>
-#include <toml++/toml.h>
 #include <vector>
 
 #include "plugin_catalog.hpp"

@@ -40,7 +40,8 @@ Vec3 ToolPath::centre(std::size_t p, double t) const {
 }
 
 void ToolPath::set_correction(std::size_t p, double dt, std::vector<Vec3> samples) {
-  for (const auto& v : samples) max_correction_ = std::max(max_correction_, v.cwiseAbs().maxCoeff());
+  for (const auto& v : samples)
+    max_correction_ = std::max(max_correction_, v.cwiseAbs().maxCoeff());
   corrections_[p] = Samples{dt, std::move(samples)};
   corrected_ = true;
 }

@@ -13,8 +13,10 @@ class BallEnd : public ToolGeometry {
   static Schema base_schema() {
     Schema s;
     s.add_number("radius", "Ball radius R").with_unit("mm").above(0).is_required();
-    s.add_integer("teeth", "Number of teeth N, evenly spaced").at_least(1).at_most(64).with_default(
-        std::int64_t{2});
+    s.add_integer("teeth", "Number of teeth N, evenly spaced")
+        .at_least(1)
+        .at_most(64)
+        .with_default(std::int64_t{2});
     s.add_number("helix_angle", "Helix angle gamma where the edge meets the shank")
         .with_unit("deg")
         .at_least(0)

@@ -12,8 +12,9 @@ class InclinedPlane : public SurfaceShape {
  public:
   static Schema schema() {
     Schema s;
-    s.add_number("angle", "Inclination lambda of the normal from +Z towards +Y; the region's "
-                          "lambda must be the same")
+    s.add_number("angle",
+                 "Inclination lambda of the normal from +Z towards +Y; the region's "
+                 "lambda must be the same")
         .with_unit("deg")
         .above(-90)
         .below(90)

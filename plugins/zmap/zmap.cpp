@@ -15,8 +15,9 @@ class ZMap : public TopographyEvaluator {
  public:
   static Schema schema() {
     Schema s;
-    s.add_number("catw_margin", "Widening a of the contact angle range (Eq. 43), for vibration "
-                                "and deflection")
+    s.add_number("catw_margin",
+                 "Widening a of the contact angle range (Eq. 43), for vibration "
+                 "and deflection")
         .at_least(1)
         .at_most(10)
         .with_default(1.5);
@@ -138,6 +139,7 @@ class ZMap : public TopographyEvaluator {
 
 TOPOMILL_PLUGIN("zmap", "0.1.0") {
   registrar.add<topomill::TopographyEvaluator, topomill::plugins::ZMap>(
-      "zmap", "The paper's Z-map: nearest node, CATW-limited edge points, Eq. 46 time step "
-              "(reference evaluator)");
+      "zmap",
+      "The paper's Z-map: nearest node, CATW-limited edge points, Eq. 46 time step "
+      "(reference evaluator)");
 }

@@ -37,7 +37,8 @@ TEST_CASE("plugins lists every built-in model per slot, as text and JSON", "[cli
   CHECK(json.out.find("\"name\" : \"zmap\"") != std::string::npos);
 }
 
-TEST_CASE("describe shows a model's schema and answers an unknown name with the known ones", "[cli]") {
+TEST_CASE("describe shows a model's schema and answers an unknown name with the known ones",
+          "[cli]") {
   const auto r = run_topomill("describe convex_arc --json");
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find("\"name\" : \"radius\"") != std::string::npos);
@@ -51,8 +52,9 @@ TEST_CASE("describe shows a model's schema and answers an unknown name with the 
 }
 
 TEST_CASE("check prints the resolved scene with defaults and overrides applied", "[cli][scene]") {
-  const auto r = run_topomill("check configs/examples/quick.toml -q --set cutting.feed_per_tooth=0.2 "
-                              "--set path.phase_shift=90");
+  const auto r = run_topomill(
+      "check configs/examples/quick.toml -q --set cutting.feed_per_tooth=0.2 "
+      "--set path.phase_shift=90");
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find("feed_per_tooth = 0.2") != std::string::npos);
   CHECK(r.out.find("phase_shift = 90") != std::string::npos);
@@ -68,8 +70,7 @@ TEST_CASE("run writes complete outputs and a summary naming plugins and stages",
   for (const std::string f : {"summary.json", "height_raw.csv", "height_residual.csv",
                               "height_raw.gsf", "height_residual.gsf", "height_residual.png"})
     CHECK(fs::exists(out + "/" + f));
-  for (const auto& e : fs::directory_iterator(out))
-    CHECK(e.path().extension() != ".partial");
+  for (const auto& e : fs::directory_iterator(out)) CHECK(e.path().extension() != ".partial");
   const std::string summary = testing::read_file(out + "/summary.json");
   CHECK(summary.find("\"roughness_um\"") != std::string::npos);
   CHECK(summary.find("\"Sa\"") != std::string::npos);

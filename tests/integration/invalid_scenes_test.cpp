@@ -28,13 +28,15 @@ Expectation read_header(const fs::path& path, const std::string& relative) {
     if (line.rfind("# args: ", 0) == 0) e.args = value("# args: ");
     if (line.rfind("# expect-exit: ", 0) == 0) e.exit_code = std::stoi(value("# expect-exit: "));
     if (line.rfind("# expect: ", 0) == 0)
-      e.messages.push_back(std::regex_replace(value("# expect: "), std::regex("\\{file\\}"), relative));
+      e.messages.push_back(
+          std::regex_replace(value("# expect: "), std::regex("\\{file\\}"), relative));
   }
   return e;
 }
 }  // namespace
 
-TEST_CASE("every scene in configs/invalid is refused with its documented message", "[cli][errors]") {
+TEST_CASE("every scene in configs/invalid is refused with its documented message",
+          "[cli][errors]") {
   std::vector<fs::path> scenes;
   for (const auto& entry : fs::directory_iterator(testing::source_dir() + "/configs/invalid"))
     if (entry.path().extension() == ".toml") scenes.push_back(entry.path());

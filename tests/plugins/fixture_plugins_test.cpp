@@ -33,7 +33,8 @@ TEST_CASE("a third-party plugin is found by --plugin-path, the environment and t
   CHECK(contains(listed.out, "fixture_good"));
   CHECK(contains(listed.out, "fixture_good 9.9.9"));
 
-  const auto env = run_topomill("describe fixture_good", "TOPOMILL_PLUGIN_PATH='" + fixture_dir("good") + "'");
+  const auto env =
+      run_topomill("describe fixture_good", "TOPOMILL_PLUGIN_PATH='" + fixture_dir("good") + "'");
   CHECK(env.exit_code == 0);
   CHECK(contains(env.out, "height_offset"));
 
@@ -48,18 +49,21 @@ TEST_CASE("a library without the entry point is refused and the listing goes on"
   const auto r = run_topomill("plugins -P '" + fixture_dir("no_entry") + "'");
   CHECK(r.exit_code == 0);
   CHECK(contains(r.out, "refused libraries"));
-  CHECK(contains(r.out, "libtopomill_fixture_no_entry.so: not a topomill plugin: it exports no "
-                        "entry point 'topomill_plugin_entry_v1'"));
+  CHECK(contains(r.out,
+                 "libtopomill_fixture_no_entry.so: not a topomill plugin: it exports no "
+                 "entry point 'topomill_plugin_entry_v1'"));
   CHECK(contains(r.out, "zmap"));  // the built-in ones are still there
 }
 
 TEST_CASE("the ABI handshake refuses a plugin built for another ABI, naming both", "[plugins]") {
   const auto r = run_topomill("plugins -P '" + fixture_dir("wrong_abi") + "'");
   CHECK(r.exit_code == 0);
-  CHECK(contains(r.out, fixture_dir("wrong_abi") + "/libtopomill_fixture_wrong_abi.so: built for "
-                        "topomill plugin ABI 999, this program provides ABI 1"));
+  CHECK(contains(r.out, fixture_dir("wrong_abi") +
+                            "/libtopomill_fixture_wrong_abi.so: built for "
+                            "topomill plugin ABI 999, this program provides ABI 1"));
   // Asked for by name, the refusal is the error.
-  const auto scene = scene_with_workpiece("wrong_abi", "fixture_wrong_abi", fixture_dir("wrong_abi"));
+  const auto scene =
+      scene_with_workpiece("wrong_abi", "fixture_wrong_abi", fixture_dir("wrong_abi"));
   const auto run = run_topomill("check '" + scene + "'");
   CHECK(run.exit_code == 2);
   CHECK(contains(run.err, "key 'workpiece.plugin': model 'fixture_wrong_abi' cannot be loaded"));
@@ -69,7 +73,8 @@ TEST_CASE("the ABI handshake refuses a plugin built for another ABI, naming both
 TEST_CASE("the record-size handshake refuses a mismatched layout", "[plugins]") {
   const auto r = run_topomill("plugins -P '" + fixture_dir("wrong_size") + "'");
   CHECK(r.exit_code == 0);
-  CHECK(contains(r.out, "record size mismatch for ModelInfo: the plugin has 1 bytes, this program"));
+  CHECK(
+      contains(r.out, "record size mismatch for ModelInfo: the plugin has 1 bytes, this program"));
 }
 
 TEST_CASE("a registration that throws is refused", "[plugins]") {
@@ -83,7 +88,8 @@ TEST_CASE("a model registered by two libraries is an error naming both", "[plugi
   CHECK_FALSE(r.crashed);
   CHECK(r.exit_code == 2);
   CHECK(contains(r.err, "model 'fixture_duplicate' is registered twice: by '" +
-                            fixture_dir("duplicate") + "/libtopomill_fixture_duplicate_a.so' and by '" +
+                            fixture_dir("duplicate") +
+                            "/libtopomill_fixture_duplicate_a.so' and by '" +
                             fixture_dir("duplicate") + "/libtopomill_fixture_duplicate_b.so'"));
 }
 
@@ -97,10 +103,12 @@ TEST_CASE("a throwing constructor fails the run cleanly and a ParamError points 
                             "/libtopomill_fixture_throwing.so' failed to construct: fixture: this "
                             "constructor always fails"));
 
-  const auto picky = run_topomill("check configs/examples/quick.toml -P '" + fixture_dir("throwing") +
-                                  "' --set workpiece.plugin=fixture_picky");
+  const auto picky =
+      run_topomill("check configs/examples/quick.toml -P '" + fixture_dir("throwing") +
+                   "' --set workpiece.plugin=fixture_picky");
   CHECK_FALSE(picky.crashed);
   CHECK(picky.exit_code == 2);
-  CHECK(contains(picky.err, "configs/examples/quick.toml:14:10: error: key 'workpiece.radius': "
-                            "fixture: 50 mm is refused"));
+  CHECK(contains(picky.err,
+                 "configs/examples/quick.toml:14:10: error: key 'workpiece.radius': "
+                 "fixture: 50 mm is refused"));
 }

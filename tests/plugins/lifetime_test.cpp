@@ -41,7 +41,8 @@ TEST_CASE("an object outlives the catalogue that loaded its plugin", "[plugins][
 }
 
 TEST_CASE("resolving and preparing a scene opens only the libraries it names", "[plugins][lazy]") {
-  auto doc = topomill::SceneDocument::parse_file(testing::source_dir() + "/configs/examples/quick.toml");
+  auto doc =
+      topomill::SceneDocument::parse_file(testing::source_dir() + "/configs/examples/quick.toml");
   topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
   topomill::Scene scene = doc.resolve(catalog);
   topomill::Prepared prepared = topomill::prepare(scene, catalog);

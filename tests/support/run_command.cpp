@@ -12,8 +12,12 @@ namespace testing {
 
 namespace fs = std::filesystem;
 
-std::string source_dir() { return TOPOMILL_SOURCE_DIR; }
-std::string fixture_dir(const std::string& name) { return std::string(TOPOMILL_FIXTURE_DIR) + "/" + name; }
+std::string source_dir() {
+  return TOPOMILL_SOURCE_DIR;
+}
+std::string fixture_dir(const std::string& name) {
+  return std::string(TOPOMILL_FIXTURE_DIR) + "/" + name;
+}
 
 std::string temp_dir(const std::string& name) {
   fs::path p = fs::temp_directory_path() / ("topomill_test_" + std::to_string(getpid())) / name;

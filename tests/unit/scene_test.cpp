@@ -27,7 +27,9 @@ size = [0.2, 0.2]
 spacing = 0.02
 )";
 
-PluginCatalog builtin_catalog() { return PluginCatalog({{PluginCatalog::builtin_dir(), "built-in"}}); }
+PluginCatalog builtin_catalog() {
+  return PluginCatalog({{PluginCatalog::builtin_dir(), "built-in"}});
+}
 }  // namespace
 
 TEST_CASE("defaults are filled in and the evaluator defaults to zmap", "[scene]") {
@@ -61,7 +63,8 @@ TEST_CASE("overrides replace values, create tables and are checked like the file
   CHECK_THROWS_AS(malformed.apply_override("no_equals_sign"), InputError);
 }
 
-TEST_CASE("a disabled effect is not resolved by a run, but check validates it", "[scene][effects]") {
+TEST_CASE("a disabled effect is not resolved by a run, but check validates it",
+          "[scene][effects]") {
   const std::string text = std::string(kBase) +
                            "[vibration]\nenabled = false\nplugin = \"not_installed\"\n"
                            "[force]\nplugin = \"also_not_installed\"\n";

@@ -6,13 +6,13 @@
 namespace topomill {
 
 struct CutState {
-  double time = 0.0;            // s
-  double spindle_angle = 0.0;   // rad, positive about +Z
-  Vec3 feed_direction{0, 1, 0}; // unit vector in CS2 (tangent to the surface along the pass)
-  double feed_per_tooth = 0.0;  // fz, mm
-  double alpha_min = 0.0;       // engaged range of the edge's polar angle (CATW), rad
+  double time = 0.0;             // s
+  double spindle_angle = 0.0;    // rad, positive about +Z
+  Vec3 feed_direction{0, 1, 0};  // unit vector in CS2 (tangent to the surface along the pass)
+  double feed_per_tooth = 0.0;   // fz, mm
+  double alpha_min = 0.0;        // engaged range of the edge's polar angle (CATW), rad
   double alpha_max = 0.0;
-  double inclination = 0.0;     // lambda of the surface under the tool, rad
+  double inclination = 0.0;  // lambda of the surface under the tool, rad
 };
 
 // Resultant cutting force on the tool (N, CS2) and the load centre: the force-weighted mean

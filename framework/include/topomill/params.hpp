@@ -49,9 +49,9 @@ struct TOPOMILL_API ParamSpec {
   bool required = false;
   std::optional<double> min, max;  // numbers, integers and each element of a number array
   bool min_exclusive = false, max_exclusive = false;
-  std::vector<std::string> choices;    // Choice, and each element of a StringArray when set
-  std::optional<std::size_t> length;   // NumberArray: exact element count
-  std::shared_ptr<Schema> element;     // TableArray: schema of each table
+  std::vector<std::string> choices;   // Choice, and each element of a StringArray when set
+  std::optional<std::size_t> length;  // NumberArray: exact element count
+  std::shared_ptr<Schema> element;    // TableArray: schema of each table
 
   // Chainable setters, used right after Schema::add*.
   ParamSpec& with_unit(std::string u);

@@ -13,8 +13,8 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <type_traits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "topomill/model.hpp"
@@ -77,18 +77,18 @@ using PluginEntry = const PluginManifest*();
 #define TOPOMILL_PLUGIN_MODEL_INFO_SIZE sizeof(::topomill::ModelInfo)
 #endif
 
-#define TOPOMILL_PLUGIN(LIBRARY_NAME, LIBRARY_VERSION)                                            \
-  static void topomill_register_models(::topomill::Registrar& registrar);                        \
-  static const ::topomill::PluginManifest* topomill_plugin_entry() {                             \
-    static const ::topomill::PluginManifest manifest{                                            \
-        TOPOMILL_PLUGIN_ABI,                                                                      \
-        static_cast<std::uint32_t>(sizeof(::topomill::PluginManifest)),                           \
-        static_cast<std::uint32_t>(TOPOMILL_PLUGIN_MODEL_INFO_SIZE),                              \
-        static_cast<std::uint32_t>(sizeof(::topomill::Registrar)),                                \
-        LIBRARY_NAME,                                                                             \
-        LIBRARY_VERSION,                                                                          \
-        &topomill_register_models};                                                               \
-    return &manifest;                                                                             \
-  }                                                                                               \
-  BOOST_DLL_ALIAS(topomill_plugin_entry, topomill_plugin_entry_v1)                                \
+#define TOPOMILL_PLUGIN(LIBRARY_NAME, LIBRARY_VERSION)                    \
+  static void topomill_register_models(::topomill::Registrar& registrar); \
+  static const ::topomill::PluginManifest* topomill_plugin_entry() {      \
+    static const ::topomill::PluginManifest manifest{                     \
+        TOPOMILL_PLUGIN_ABI,                                              \
+        static_cast<std::uint32_t>(sizeof(::topomill::PluginManifest)),   \
+        static_cast<std::uint32_t>(TOPOMILL_PLUGIN_MODEL_INFO_SIZE),      \
+        static_cast<std::uint32_t>(sizeof(::topomill::Registrar)),        \
+        LIBRARY_NAME,                                                     \
+        LIBRARY_VERSION,                                                  \
+        &topomill_register_models};                                       \
+    return &manifest;                                                     \
+  }                                                                       \
+  BOOST_DLL_ALIAS(topomill_plugin_entry, topomill_plugin_entry_v1)        \
   static void topomill_register_models(::topomill::Registrar& registrar)

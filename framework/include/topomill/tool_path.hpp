@@ -40,7 +40,9 @@ class TOPOMILL_API ToolPath {
   Vec3 nominal_centre(std::size_t p, double t) const;
   // Ball centre with the correction of Eq. 32-33 added (linear between correction samples).
   Vec3 centre(std::size_t p, double t) const;
-  double spindle_angle(std::size_t p, double t) const { return passes_[p].phase + spindle_rate_ * t; }
+  double spindle_angle(std::size_t p, double t) const {
+    return passes_[p].phase + spindle_rate_ * t;
+  }
 
   // Corrections sampled every `dt` from t = 0 of pass p; beyond the last sample it is held.
   void set_correction(std::size_t p, double dt, std::vector<Vec3> samples);

@@ -11,8 +11,7 @@ void write_csv(const std::string& path, const HeightMap& map) {
   write_atomically(path, [&](std::ostream& out) {
     out.precision(9);
     for (std::size_t j = 0; j < map.grid.ny; ++j) {
-      for (std::size_t i = 0; i < map.grid.nx; ++i)
-        out << (i ? "," : "") << map.at(i, j) * 1e3;
+      for (std::size_t i = 0; i < map.grid.nx; ++i) out << (i ? "," : "") << map.at(i, j) * 1e3;
       out << '\n';
     }
   });

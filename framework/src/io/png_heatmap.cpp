@@ -46,8 +46,8 @@ const std::map<char, std::array<unsigned char, 7>>& font() {
   return f;
 }
 
-constexpr int kScale = 2;                    // glyph pixels per font pixel
-constexpr int kAdvance = 6 * kScale;         // character width including spacing
+constexpr int kScale = 2;             // glyph pixels per font pixel
+constexpr int kAdvance = 6 * kScale;  // character width including spacing
 constexpr int kGlyphHeight = 7 * kScale;
 
 struct Canvas {
@@ -77,8 +77,8 @@ struct Canvas {
 
 // Perceptually ordered dark-blue -> teal -> yellow ramp (viridis control points).
 std::array<unsigned char, 3> colour(double t) {
-  static const double stops[][3] = {{68, 1, 84},    {59, 82, 139},  {33, 145, 140},
-                                    {94, 201, 98},  {253, 231, 37}};
+  static const double stops[][3] = {
+      {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
   t = std::clamp(t, 0.0, 1.0) * 4.0;
   const int k = std::min(3, static_cast<int>(t));
   const double w = t - k;

@@ -30,7 +30,8 @@ toml::table grid_table(const Grid& g) {
 toml::table roughness_table(const Roughness& r) {
   toml::table t;
   for (const auto& [name, v] : r.named()) {
-    const bool height = name == "Sa" || name == "Sq" || name == "Sp" || name == "Sv" || name == "Sz";
+    const bool height =
+        name == "Sa" || name == "Sq" || name == "Sp" || name == "Sv" || name == "Sz";
     t.insert(name, height ? v * 1e3 : v);
   }
   return t;
@@ -69,7 +70,8 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
       write_png_heatmap(path("height_residual.png"), result.residual, labels);
     }
   }
-  const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double write_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   toml::table timing;
   toml::array stage_names;
@@ -96,8 +98,8 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
   for (const auto& f : files) file_list.push_back(f);
 
   toml::table root{
-      {"topomill", toml::table{{"version", kVersion},
-                               {"abi", static_cast<std::int64_t>(kAbiVersion)}}},
+      {"topomill",
+       toml::table{{"version", kVersion}, {"abi", static_cast<std::int64_t>(kAbiVersion)}}},
       {"scene", toml::table{{"file", scene.file}, {"name", scene.table("scene").string("name")}}},
       {"resolved_scene", scene.to_toml()},
       {"plugins", std::move(plugins)},
