@@ -18,7 +18,9 @@ Schema cutting_schema() {
       .with_unit("mm")
       .above(0)
       .is_required();
-  s.add_number("stepover", "Step-over ae between adjacent passes (along X)")
+  s.add_number(
+       "stepover",
+       "Step-over ae between adjacent passes (along X; along the surface for raster_across)")
       .with_unit("mm")
       .above(0)
       .is_required();
@@ -30,8 +32,10 @@ Schema cutting_schema() {
 
 Schema path_schema() {
   Schema s;
-  s.add_choice("strategy", {"raster"},
-               "Tool path: raster = one-way passes feeding along +Y, stepping along +X")
+  s.add_choice("strategy", {"raster", "raster_across"},
+               "Tool path: raster = one-way passes feeding along +Y over the curvature, stepping "
+               "along +X (the paper's); raster_across = feeding along +X, stepping along the "
+               "surface by the arc length ae")
       .with_default(std::string("raster"));
   s.add_number("start_angle", "Spindle angle of the first tooth when the first pass starts")
       .with_unit("deg")

@@ -76,45 +76,71 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   const double y_lo = cut_y(L.s_lo);
   const double y_hi = cut_y(L.s_hi);
 
-  // Z-map grid: spacing h across the feed; along it h cos(lambda), so that the resolution on the
-  // surface is about h wherever the patch sits.
+  // Z-map grid: spacing h in X; in Y h cos(lambda), so that the resolution on the surface is about
+  // h wherever the patch sits up to lambda = 60 deg. Steeper, the Y spacing stays h/2 (a height
+  // field over XY sees a near-vertical surface edge-on; finer Y spacing would make the paper's
+  // time step, tied to it, vanish) and the resolution along the surface is coarser than h.
   Grid& g = L.grid;
   g.nx = static_cast<std::size_t>(std::llround(size[0] / h)) + 1;
   g.dx = size[0] / static_cast<double>(g.nx - 1);
   g.x0 = -size[0] / 2;
-  const double dy_target = h * std::max(std::cos(lambda_c), 1e-3);
+  const double dy_target = h * std::max(std::cos(lambda_c), 0.5);
   g.ny = static_cast<std::size_t>(std::ceil((y_hi - y_lo) / dy_target)) + 1;
-  g.dy = (y_hi - y_lo) / static_cast<double>(g.ny - 1);
-  g.y0 = y_lo;
+  if (g.ny >= 3) {
+    g.dy = (y_hi - y_lo) / static_cast<double>(g.ny - 1);
+    g.y0 = y_lo;
+  } else {  // the patch projects to less than two rows: three rows around it
+    g.ny = 3;
+    g.dy = dy_target;
+    g.y0 = 0.5 * (y_lo + y_hi) - dy_target;
+  }
 
   // Only the ball's bottom, near the nominal contact point, leaves the final surface: a node is
   // finished by the nearest pass on either side and by the teeth passing it along the feed. So
   // the passes run from one step-over before the patch to one after, and each pass feeds from a
   // few feeds per revolution (and the depth, for the contact point's offset on a slope) before
   // the patch to as far after it.
-  const long k_lo = static_cast<long>(std::floor(g.x0 / ae)) - 1;
-  const long k_hi = static_cast<long>(std::ceil(-g.x0 / ae)) + 1;
-  const double run = 3 * fz * tool.teeth() + ap + 2 * h;
-  const double y_start = y_lo - run, y_end = y_hi + run;
-  if (y_start <= surface->y_min() || y_end >= surface->y_max())
-    throw InputError(
-        region.where("lambda"), "region.lambda",
-        "the patch at this lambda, with the tool's run-in and run-out, reaches past "
-        "the end of the workpiece surface; choose a smaller lambda or a larger radius");
-  for (double y : {y_start, y_lo, y_c, y_hi, y_end})
-    L.lambda_max = std::max(L.lambda_max, std::abs(surface->inclination(y)));
-
   const int teeth = tool.teeth();
+  const double run = 3 * fz * teeth + ap + 2 * h;
   const double vf = fz * teeth * rpm / 60.0;
   const double omega =
       2 * M_PI * rpm / 60.0 * (cut.string("spindle_direction") == "cw" ? -1.0 : 1.0);
   const double start = pathp.number("start_angle") * kDeg;
   const double shift = pathp.number("phase_shift") * kDeg;
+  const bool across = pathp.string("strategy") == "raster_across";
+
   std::vector<ToolPath::Pass> passes;
-  for (long k = k_lo; k <= k_hi; ++k)
-    passes.push_back({static_cast<double>(k) * ae, y_start, (y_end - y_start) / vf,
-                      start + static_cast<double>(k - k_lo) * shift});
-  L.path = std::make_shared<ToolPath>(surface, R - ap, vf, omega, std::move(passes));
+  double y_first = 0, y_last = 0;  // extent of the surface points the tool passes over
+  if (!across) {
+    const long k_lo = static_cast<long>(std::floor(g.x0 / ae)) - 1;
+    const long k_hi = static_cast<long>(std::ceil(-g.x0 / ae)) + 1;
+    y_first = y_lo - run, y_last = y_hi + run;
+    for (long k = k_lo; k <= k_hi; ++k)
+      passes.push_back({static_cast<double>(k) * ae, y_first, (y_last - y_first) / vf,
+                        start + static_cast<double>(k - k_lo) * shift});
+  } else {
+    // Passes step by the arc length ae along the surface, centred on the patch.
+    const long k_lo = static_cast<long>(std::floor((L.s_lo - s_c) / ae)) - 1;
+    const long k_hi = static_cast<long>(std::ceil((L.s_hi - s_c) / ae)) + 1;
+    const double span_k = (static_cast<double>(k_hi - k_lo) + 2) * ae;
+    const double x_first = g.x0 - run, x_last = -g.x0 + run;
+    for (long k = k_lo; k <= k_hi; ++k) {
+      const double y = y_at_arc(*surface, s_c + static_cast<double>(k) * ae, y_c, span_k);
+      passes.push_back(
+          {x_first, y, (x_last - x_first) / vf, start + static_cast<double>(k - k_lo) * shift});
+    }
+    y_first = passes.front().y_start, y_last = passes.back().y_start;
+  }
+  if (y_first <= surface->y_min() || y_last >= surface->y_max())
+    throw InputError(
+        region.where("lambda"), "region.lambda",
+        "the patch at this lambda, with the tool's run-in and run-out, reaches past "
+        "the end of the workpiece surface; choose a smaller lambda or a larger radius");
+  for (double y : {y_first, y_lo, y_c, y_hi, y_last})
+    L.lambda_max = std::max(L.lambda_max, std::abs(surface->inclination(y)));
+
+  L.path = std::make_shared<ToolPath>(surface, R - ap, vf, omega, std::move(passes),
+                                      across ? ToolPath::FeedAxis::X : ToolPath::FeedAxis::Y);
   return L;
 }
 

@@ -6,23 +6,30 @@
 namespace topomill {
 
 ToolPath::ToolPath(std::shared_ptr<const SurfaceShape> surface, double offset, double feed_speed,
-                   double spindle_rate, std::vector<Pass> passes)
+                   double spindle_rate, std::vector<Pass> passes, FeedAxis axis)
     : surface_(std::move(surface)),
       offset_(offset),
       feed_speed_(feed_speed),
       spindle_rate_(spindle_rate),
       passes_(std::move(passes)),
+      axis_(axis),
       corrections_(passes_.size()) {}
 
 double ToolPath::surface_y(std::size_t p, double t) const {
-  return passes_[p].y_start + feed_speed_ * t;
+  return axis_ == FeedAxis::Y ? passes_[p].y_start + feed_speed_ * t : passes_[p].y_start;
+}
+
+Vec3 ToolPath::feed_direction(std::size_t p, double t) const {
+  if (axis_ == FeedAxis::X) return Vec3::UnitX();
+  const double lambda = surface_->inclination(surface_y(p, t));
+  return {0.0, std::cos(lambda), -std::sin(lambda)};
 }
 
 Vec3 ToolPath::nominal_centre(std::size_t p, double t) const {
   const double y = surface_y(p, t);
   const double lambda = surface_->inclination(y);
-  return {passes_[p].x, y + offset_ * std::sin(lambda),
-          surface_->height(y) + offset_ * std::cos(lambda)};
+  const double x = axis_ == FeedAxis::X ? passes_[p].x + feed_speed_ * t : passes_[p].x;
+  return {x, y + offset_ * std::sin(lambda), surface_->height(y) + offset_ * std::cos(lambda)};
 }
 
 Vec3 ToolPath::correction(std::size_t p, double t) const {

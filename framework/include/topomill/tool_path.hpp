@@ -13,8 +13,13 @@ namespace topomill {
 
 class TOPOMILL_API ToolPath {
  public:
-  // One pass: feed along +Y at x, starting with the surface point y_start under the tool at
-  // t = 0 and ending at t_end; `phase` is the spindle angle at t = 0 (rad).
+  // Passes feed along +Y (along the curvature: the paper's raster) or along +X (across it, along
+  // the cylinder's axis).
+  enum class FeedAxis { Y, X };
+
+  // One pass starts at t = 0 over the surface point (x, y_start) and ends at t_end; feeding along
+  // Y the surface point moves as y_start + vf t, feeding along X the tool moves as x + vf t.
+  // `phase` is the spindle angle at t = 0 (rad).
   struct Pass {
     double x = 0.0;
     double y_start = 0.0;
@@ -25,7 +30,7 @@ class TOPOMILL_API ToolPath {
   // `offset` is R - ap, the distance of the ball centre from the uncut surface along its normal;
   // `feed_speed` vf in mm/s; `spindle_rate` in rad/s, signed (negative = clockwise from above).
   ToolPath(std::shared_ptr<const SurfaceShape> surface, double offset, double feed_speed,
-           double spindle_rate, std::vector<Pass> passes);
+           double spindle_rate, std::vector<Pass> passes, FeedAxis axis = FeedAxis::Y);
 
   std::size_t passes() const { return passes_.size(); }
   const Pass& pass(std::size_t p) const { return passes_[p]; }
@@ -34,8 +39,12 @@ class TOPOMILL_API ToolPath {
   double offset() const { return offset_; }
   const SurfaceShape& surface() const { return *surface_; }
 
-  // Surface point under the tool centre at time t: y_n = y_start + vf t (the paper's feed model).
+  FeedAxis feed_axis() const { return axis_; }
+  // Surface point under the tool centre at time t: y_n = y_start + vf t feeding along Y (the
+  // paper's feed model: uniform in Y, not along the arc), y_start feeding along X.
   double surface_y(std::size_t p, double t) const;
+  // Unit feed direction (tangent to the surface along the pass) at time t.
+  Vec3 feed_direction(std::size_t p, double t) const;
   // Ideal ball centre K (Eq. 15).
   Vec3 nominal_centre(std::size_t p, double t) const;
   // Ball centre with the correction of Eq. 32-33 added (linear between correction samples).
@@ -56,6 +65,7 @@ class TOPOMILL_API ToolPath {
   std::shared_ptr<const SurfaceShape> surface_;
   double offset_, feed_speed_, spindle_rate_;
   std::vector<Pass> passes_;
+  FeedAxis axis_;
   struct Samples {
     double dt = 0.0;
     std::vector<Vec3> values;

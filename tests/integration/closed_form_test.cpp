@@ -1,0 +1,143 @@
+// The whole pipeline (raster path, Z-map, unrolled residual) against answers from outside the
+// code: MODEL.md's closed-form scallop heights, limits, and properties every run must have.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "support/scenes.hpp"
+
+using testing::paper_scene;
+using testing::run_scene;
+
+namespace {
+// The cusp height of cross-feed scallops, in um: along the feed, the lowest residual of each line
+// of nodes is the swept sphere's envelope there (the feed marks only add to it); across, the
+// highest of those is the cusp between two passes. `feed_along_x` picks which grid axis is the
+// feed.
+double cusp_height_um(const topomill::HeightMap& m, bool feed_along_x) {
+  const auto& g = m.grid;
+  double cusp = -INFINITY;
+  const std::size_t lines = feed_along_x ? g.ny : g.nx, along = feed_along_x ? g.nx : g.ny;
+  for (std::size_t l = 0; l < lines; ++l) {
+    double low = INFINITY;
+    for (std::size_t k = 0; k < along; ++k)
+      low = std::min(low, feed_along_x ? m.at(k, l) : m.at(l, k));
+    cusp = std::max(cusp, low);
+  }
+  return cusp * 1e3;
+}
+
+double flat_scallop_um(double R, double ae) {
+  return 1e3 * (R - std::sqrt(R * R - ae * ae / 4));
+}
+
+// MODEL.md: tool-centre circle Rc, chord ae on the finished surface of radius r.
+double convex_scallop_um(double R, double r, double ae) {
+  const double half = std::asin(ae / (2 * r)), Rc = r + R;
+  return 1e3 *
+         (Rc * std::cos(half) - std::sqrt(R * R - Rc * Rc * std::sin(half) * std::sin(half)) - r);
+}
+}  // namespace
+
+TEST_CASE("flat cross-feed scallops have height R - sqrt(R^2 - (ae/2)^2)",
+          "[closed-form][scallop]") {
+  // R = 5, ae = 0.3: 5 - sqrt(24.9775) = 2.2505 um (MODEL.md prints 2.2508, a slip: ae^2/8R
+  // alone is 2.2500 and the exact form adds 0.0005); ae = 0.5 gives MODEL.md's 6.2539 um.
+  CHECK(flat_scallop_um(5, 0.3) == Approx(2.2505).margin(5e-5));
+  CHECK(flat_scallop_um(5, 0.5) == Approx(6.2539).margin(5e-5));
+  for (double ae : {0.3, 0.5}) {
+    DYNAMIC_SECTION("ae " << ae) {
+      const auto r =
+          run_scene(paper_scene("plugin = 'inclined_plane'\nangle = 0.0", 0.0, ae, 0.1, 0.005),
+                    {"cutting.stepover=" + std::to_string(ae)});
+      CHECK(cusp_height_um(r.residual, false) == Approx(flat_scallop_um(5, ae)).epsilon(0.015));
+    }
+  }
+}
+
+TEST_CASE("scallops stepping across the curvature follow MODEL.md's curved forms",
+          "[closed-form][scallop]") {
+  // MODEL.md, R = 5, r = 20 (finished surface), chord 0.5: convex 7.8220, concave 4.6888, flat
+  // 6.2539 um. The scene's radius is the uncut surface's, ap = 0.3 away; the stepover is the arc
+  // length on it with the same angle as the chord 0.5 on r = 20.
+  CHECK(convex_scallop_um(5, 20, 0.5) == Approx(7.8220).margin(5e-5));
+  const double ap = 0.3, theta = 2 * std::asin(0.5 / 40);
+  struct Case {
+    const char* workpiece;
+    double uncut_radius, expected_um;
+  };
+  const Case cases[] = {{"convex_arc", 20 + ap, 7.8220}, {"concave_arc", 20 - ap, 4.6888}};
+  for (const auto& c : cases) {
+    DYNAMIC_SECTION(c.workpiece) {
+      const double ae = c.uncut_radius * theta;
+      const auto r =
+          run_scene(paper_scene(std::string("plugin = '") + c.workpiece +
+                                    "'\nradius = " + std::to_string(c.uncut_radius),
+                                0.0, 0.1, ae, 0.005),
+                    {"path.strategy=raster_across", "cutting.stepover=" + std::to_string(ae)});
+      CHECK(cusp_height_um(r.residual, true) == Approx(c.expected_um).epsilon(0.015));
+    }
+  }
+  SECTION("flat") {
+    const auto r = run_scene(paper_scene("plugin = 'inclined_plane'", 0.0, 0.1, 0.5, 0.005),
+                             {"path.strategy=raster_across", "cutting.stepover=0.5"});
+    CHECK(cusp_height_um(r.residual, true) == Approx(6.2539).epsilon(0.015));
+  }
+}
+
+TEST_CASE("a very large arc radius gives the plane's surface", "[closed-form][limit]") {
+  // At the crown, where the Z-map's nearest-node error does not depend on where the grid falls
+  // (on a slope it does, by up to the slope times half a cell: see docs/validation.md).
+  const auto arc =
+      run_scene(paper_scene("plugin = 'convex_arc'\nradius = 1e6", 0.0, 0.3, 0.3, 0.01));
+  const auto plane =
+      run_scene(paper_scene("plugin = 'inclined_plane'\nangle = 0.0", 0.0, 0.3, 0.3, 0.01));
+  CHECK(arc.roughness.Sa == Approx(plane.roughness.Sa).epsilon(0.01));
+  CHECK(arc.roughness.Sz == Approx(plane.roughness.Sz).epsilon(0.01));
+  CHECK(cusp_height_um(arc.residual, false) ==
+        Approx(cusp_height_um(plane.residual, false)).epsilon(0.01));
+}
+
+TEST_CASE("lambda = 0 (the tool tip, zero cutting speed) and lambda near 90 deg finish finite",
+          "[closed-form][hard]") {
+  const auto tip =
+      run_scene(paper_scene("plugin = 'convex_arc'\nradius = 50.0", 0.0, 0.3, 0.3, 0.01));
+  for (double z : tip.residual.z) REQUIRE(std::isfinite(z));
+  CHECK(tip.roughness.Sa > 0);
+  CHECK(tip.roughness.Sz * 1e3 < 10 * flat_scallop_um(5, 0.3));
+
+  const auto steep =
+      run_scene(paper_scene("plugin = 'inclined_plane'\nangle = 89.9", 89.9, 0.1, 0.1, 0.02));
+  for (double z : steep.residual.z) REQUIRE(std::isfinite(z));
+  CHECK(std::isfinite(steep.roughness.Sa));
+
+  // On a convex arc the patch at 89.9 deg runs past the end of the quarter circle: refused.
+  CHECK_THROWS_WITH(
+      run_scene(paper_scene("plugin = 'convex_arc'\nradius = 50.0", 89.9, 0.86, 0.86, 0.01)),
+      Catch::Contains("key 'region.lambda'") &&
+          Catch::Contains("reaches past the end of the workpiece surface"));
+}
+
+TEST_CASE("the height map does not depend on the number of threads", "[determinism]") {
+  const std::string scene =
+      paper_scene("plugin = 'convex_arc'\nradius = 50.0", 30.0, 0.2, 0.2, 0.02);
+  const auto one = run_scene(scene, {}, 1);
+  for (unsigned threads : {2u, 3u}) {
+    const auto many = run_scene(scene, {}, threads);
+    CHECK(many.raw.z == one.raw.z);  // bit for bit: the Z-map is a min-reduction
+  }
+}
+
+TEST_CASE("Sa converges as the grid is refined", "[convergence]") {
+  // The paper's Z-map converges slowly and not monotonically at coarse grids (a 40 um grid cannot
+  // resolve 0.1 mm feed marks); from 20 um on, each halving must bring Sa closer to the finest.
+  const std::string scene =
+      paper_scene("plugin = 'convex_arc'\nradius = 50.0", 0.0, 0.3, 0.3, 0.02);
+  std::vector<double> sa;
+  for (double h : {0.02, 0.01, 0.005})
+    sa.push_back(run_scene(scene, {"region.spacing=" + std::to_string(h)}).roughness.Sa);
+  const double d1 = std::abs(sa[1] - sa[0]), d2 = std::abs(sa[2] - sa[1]);
+  INFO("Sa (um) at 20, 10, 5 um: " << sa[0] * 1e3 << ", " << sa[1] * 1e3 << ", " << sa[2] * 1e3
+                                   << "; observed order " << std::log2(d1 / d2));
+  CHECK(d2 < d1);
+}

@@ -1,0 +1,32 @@
+#include "support/scenes.hpp"
+
+#include <sstream>
+
+namespace testing {
+
+std::string paper_scene(const std::string& workpiece, double lambda_deg, double size_x,
+                        double size_s, double spacing) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "[tool]\nplugin = 'ball_end_loxodrome'\nradius = 5.0\nteeth = 2\nhelix_angle = 30.0\n"
+    << "[workpiece]\n"
+    << workpiece << "\n"
+    << "[cutting]\nspindle_speed = 4000\nfeed_per_tooth = 0.1\ndepth_of_cut = 0.3\n"
+    << "stepover = 0.3\n"
+    << "[region]\nlambda = " << lambda_deg << "\nsize = [" << size_x << ", " << size_s
+    << "]\nspacing = " << spacing << "\n";
+  return s.str();
+}
+
+topomill::RunResult run_scene(const std::string& toml, const std::vector<std::string>& overrides,
+                              unsigned threads) {
+  auto doc = topomill::SceneDocument::parse_string(toml, "test-scene.toml");
+  for (const auto& o : overrides) doc.apply_override(o);
+  topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
+  topomill::Scene scene = doc.resolve(catalog);
+  topomill::RunOptions options;
+  options.threads = threads;
+  return topomill::run_pipeline(scene, catalog, options);
+}
+
+}  // namespace testing

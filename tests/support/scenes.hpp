@@ -1,0 +1,19 @@
+// Runs scenes in-process (with the built-in plugins) for tests that inspect the height maps.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pipeline.hpp"
+
+namespace testing {
+
+// The paper's tool and cutting conditions on `workpiece` (the [workpiece] table's body).
+std::string paper_scene(const std::string& workpiece, double lambda_deg, double size_x,
+                        double size_s, double spacing);
+
+// Resolves `toml` with `overrides` ("table.key=value", as --set) and runs it.
+topomill::RunResult run_scene(const std::string& toml,
+                              const std::vector<std::string>& overrides = {}, unsigned threads = 2);
+
+}  // namespace testing
