@@ -55,8 +55,114 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog) {
   out.evaluator = catalog.create<TopographyEvaluator>(*e.model, e.params);
   for (const auto* st : {&t, &w, &e})
     log_info(st->table + ": " + st->plugin + " from " + st->model->library->path);
+  if (scene.enabled("force")) {
+    const auto& f = scene.slot("force");
+    out.force = catalog.create<ForceModel>(*f.model, f.params);
+    log_info("force: " + f.plugin + " from " + f.model->library->path);
+  }
+  if (scene.enabled("vibration")) {
+    const auto& v = scene.slot("vibration");
+    out.dynamics = catalog.create<DynamicsModel>(*v.model, v.params);
+    log_info("vibration: " + v.plugin + " from " + v.model->library->path);
+  }
+  for (const std::string name : {"deflection", "springback"}) {
+    if (!scene.enabled(name)) continue;
+    const auto& d = scene.slot(name);
+    out.deformations.emplace_back(name, catalog.create<Deformation>(*d.model, d.params));
+    log_info(name + ": " + d.plugin + " from " + d.model->library->path);
+  }
   out.layout = make_layout(scene, *out.tool, out.surface);
   return out;
+}
+
+namespace {
+
+// A ParamError raised while a model works (not only when it is made) still names its scene key.
+template <class F>
+auto in_table(const SlotTable& table, F&& f) {
+  try {
+    return f();
+  } catch (const ParamError& e) {
+    throw InputError(table.params.where(e.key()), table.table + "." + e.key(), e.what());
+  }
+}
+
+void require_finite(const std::vector<Vec3>& v, const std::string& what) {
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!v[i].allFinite())
+      throw std::runtime_error(what + " is not finite at sample " + std::to_string(i) +
+                               "; nothing was written");
+}
+
+}  // namespace
+
+// Forces on a time grid chosen for the dynamics, the response, the deformations, and their sum
+// as the path correction TC (Eq. 32-33). Each pass starts from rest.
+static void apply_effects(const Scene& scene, const Prepared& m, StageClock& clock,
+                          RunResult& result) {
+  const Layout& L = m.layout;
+  ToolPath& path = *L.path;
+  const Params& cut = scene.table("cutting");
+  const double tooth_period = 2 * M_PI / std::abs(path.spindle_rate()) / m.tool->teeth();
+  double dt = tooth_period / 64;  // resolves the force's variation over a tooth passage
+  if (m.dynamics) dt = std::min(dt, m.dynamics->suggested_step());
+  result.dynamics_step = dt;
+
+  std::vector<std::vector<CutState>> states(path.passes());
+  std::vector<std::vector<CuttingForce>> forces(path.passes());
+  clock.run("force", [&] {
+    for (std::size_t p = 0; p < path.passes(); ++p) {
+      const auto n = static_cast<std::size_t>(std::ceil(path.pass(p).t_end / dt)) + 1;
+      for (std::size_t k = 0; k < n; ++k) {
+        CutState st;
+        st.time = static_cast<double>(k) * dt;
+        st.spindle_angle = path.spindle_angle(p, st.time);
+        st.feed_direction = path.feed_direction(p, st.time);
+        st.feed_per_tooth = cut.number("feed_per_tooth");
+        st.inclination = path.surface().inclination(path.surface_y(p, st.time));
+        st.alpha_min = std::max(0.0, std::abs(st.inclination) - L.kappa);
+        st.alpha_max = std::min(M_PI / 2, std::abs(st.inclination) + L.kappa);
+        st.spindle_rate = path.spindle_rate();
+        st.depth_of_cut = cut.number("depth_of_cut");
+        st.stepover = cut.number("stepover");
+        states[p].push_back(st);
+        forces[p].push_back(
+            in_table(scene.slot("force"), [&] { return m.force->evaluate(*m.tool, st); }));
+      }
+    }
+    result.work["force_samples"] = states.size() * (states.empty() ? 0 : states[0].size());
+  });
+
+  std::vector<std::vector<Vec3>> corrections(path.passes());
+  for (std::size_t p = 0; p < path.passes(); ++p)
+    corrections[p].assign(states[p].size(), Vec3::Zero());
+  if (m.dynamics) {
+    clock.run("dynamics", [&] {
+      for (std::size_t p = 0; p < path.passes(); ++p) {
+        std::vector<Vec3> f;
+        for (const auto& c : forces[p]) f.push_back(c.force);
+        const auto x =
+            in_table(scene.slot("vibration"), [&] { return m.dynamics->respond(f, dt); });
+        require_finite(x, "the vibration response");
+        for (std::size_t k = 0; k < x.size(); ++k) corrections[p][k] += x[k];
+      }
+    });
+  }
+  if (!m.deformations.empty()) {
+    clock.run("deformation", [&] {
+      for (const auto& [name, model] : m.deformations)
+        for (std::size_t p = 0; p < path.passes(); ++p)
+          for (std::size_t k = 0; k < states[p].size(); ++k)
+            corrections[p][k] += in_table(scene.slot(name), [&] {
+              return model->correction(forces[p][k], *m.tool, states[p][k]);
+            });
+    });
+  }
+  for (std::size_t p = 0; p < path.passes(); ++p) {
+    require_finite(corrections[p], "the path correction");
+    path.set_correction(p, dt, std::move(corrections[p]));
+  }
+  result.effects = scene.enabled_effects();
 }
 
 RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog,
@@ -65,6 +171,7 @@ RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog,
   StageClock clock(result.stages);
 
   Prepared m = clock.run("setup", [&] { return prepare(scene, catalog); });
+  if (m.force) apply_effects(scene, m, clock, result);
   result.layout = m.layout;
   const Layout& L = result.layout;
   log_info("grid " + std::to_string(L.grid.nx) + " x " + std::to_string(L.grid.ny) + " nodes, " +

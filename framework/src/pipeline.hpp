@@ -10,6 +10,9 @@
 #include "plugin_catalog.hpp"
 #include "roughness.hpp"
 #include "scene.hpp"
+#include "topomill/deformation.hpp"
+#include "topomill/dynamics_model.hpp"
+#include "topomill/force_model.hpp"
 #include "topomill/surface_shape.hpp"
 #include "topomill/tool_geometry.hpp"
 #include "topomill/topography_evaluator.hpp"
@@ -34,6 +37,7 @@ struct RunResult {
   std::vector<StageTime> stages;
   WorkCounts work;
   std::vector<std::string> effects;  // enabled effect tables that ran
+  double dynamics_step = 0;          // s, the force/dynamics time grid (0: no effects)
   Layout layout;
 };
 
@@ -43,6 +47,10 @@ struct Prepared {
   std::shared_ptr<ToolGeometry> tool;
   std::shared_ptr<SurfaceShape> surface;
   std::shared_ptr<TopographyEvaluator> evaluator;
+  // Made only when an enabled effect needs them; null otherwise.
+  std::shared_ptr<ForceModel> force;
+  std::shared_ptr<DynamicsModel> dynamics;
+  std::vector<std::pair<std::string, std::shared_ptr<Deformation>>> deformations;
   Layout layout;
 };
 

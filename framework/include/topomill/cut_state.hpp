@@ -12,7 +12,10 @@ struct CutState {
   double feed_per_tooth = 0.0;   // fz, mm
   double alpha_min = 0.0;        // engaged range of the edge's polar angle (CATW), rad
   double alpha_max = 0.0;
-  double inclination = 0.0;  // lambda of the surface under the tool, rad
+  double inclination = 0.0;   // lambda of the surface under the tool, rad
+  double spindle_rate = 0.0;  // rad/s, signed: > 0 counter-clockwise seen from above
+  double depth_of_cut = 0.0;  // ap, mm
+  double stepover = 0.0;      // ae, mm
 };
 
 // Resultant cutting force on the tool (N, CS2) and the load centre: the force-weighted mean

@@ -17,6 +17,9 @@ class TOPOMILL_API DynamicsModel : public Model {
   // Largest stable step (s) of the scheme for this model's modes; +infinity when unconditional.
   // The core refuses a larger step with a message naming the limit, or sub-steps on request.
   virtual double max_stable_step() const { return std::numeric_limits<double>::infinity(); }
+  // The step (s) this model wants for accuracy (e.g. a fraction of its fastest mode's period); the
+  // core samples forces and the response at the smaller of this and its own force resolution.
+  virtual double suggested_step() const { return std::numeric_limits<double>::infinity(); }
 };
 
 template <>
