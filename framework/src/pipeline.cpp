@@ -158,6 +158,19 @@ static void apply_effects(const Scene& scene, const Prepared& m, StageClock& clo
             });
     });
   }
+  // A linear model moving the tool by more than its own radius is outside its range (a mode far
+  // too soft, a force far too large): refuse rather than draw a meaningless surface.
+  double largest = 0;
+  for (const auto& c : corrections)
+    for (const auto& v : c) largest = std::max(largest, v.cwiseAbs().maxCoeff());
+  if (largest > m.tool->radius()) {
+    const std::string table = m.dynamics ? "vibration" : m.deformations.front().first;
+    throw InputError(scene.slot(table).where, table,
+                     "the path correction reaches " + std::to_string(largest) +
+                         " mm, more than the ball radius " + std::to_string(m.tool->radius()) +
+                         " mm: the effects' parameters (a mode's stiffness, the overhang) are "
+                         "outside the range the linear models describe");
+  }
   for (std::size_t p = 0; p < path.passes(); ++p) {
     require_finite(corrections[p], "the path correction");
     path.set_correction(p, dt, std::move(corrections[p]));

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -46,12 +47,10 @@ class Modal : public DynamicsModel {
       const Params& t = tables[i];
       const std::string axis = t.string("axis");
       const double f = t.number("frequency");
-      modes_.push_back(
-          {axis == "x"   ? 0
-           : axis == "y" ? 1
-                         : 2,
-           2 * M_PI * f, t.number("damping"), t.number("stiffness"),
-           "mode " + std::to_string(i + 1) + " (" + axis + ", " + std::to_string(f) + " Hz)"});
+      char label[64];
+      std::snprintf(label, sizeof label, "mode %zu (%s, %g Hz)", i + 1, axis.c_str(), f);
+      const int index = axis == "x" ? 0 : (axis == "y" ? 1 : 2);
+      modes_.push_back({index, 2 * M_PI * f, t.number("damping"), t.number("stiffness"), label});
     }
   }
 

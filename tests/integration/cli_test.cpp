@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "support/run_command.hpp"
+#include "support/scene_header.hpp"
 
 namespace fs = std::filesystem;
 using testing::run_topomill;
@@ -78,4 +79,17 @@ TEST_CASE("run writes complete outputs and a summary naming plugins and stages",
   CHECK(summary.find("\"evaluate\"") != std::string::npos);
   CHECK(summary.find("\"effects\" : []") != std::string::npos);
   CHECK(r.out.find("Sa ") != std::string::npos);
+}
+
+TEST_CASE("every committed scene under paper, validation and examples passes check",
+          "[cli][scene]") {
+  std::vector<std::string> scenes;
+  for (const std::string dir : {"configs/paper", "configs/validation", "configs/examples"})
+    for (const auto& s : testing::scenes_in(dir)) scenes.push_back(s);
+  REQUIRE(scenes.size() >= 20);
+  for (const auto& s : scenes) {
+    const auto r = run_topomill("check " + s + " -q");
+    INFO(s << ": " << r.err);
+    CHECK(r.exit_code == 0);
+  }
 }
