@@ -94,6 +94,25 @@ void require_finite(const std::vector<Vec3>& v, const std::string& what) {
                                "; nothing was written");
 }
 
+// Material at the tool's position: below the uncut surface, and farther than R from the previous
+// pass's centre line (one step-over back, along the same feed direction).
+std::function<bool(const Vec3&)> material_test(const ToolPath& path, std::size_t p,
+                                               const CutState& st, double R) {
+  const Vec3 centre = path.nominal_centre(p, st.time);
+  const Vec3 feed = st.feed_direction;
+  const Vec3 step = path.feed_axis() == ToolPath::FeedAxis::Y
+                        ? Vec3(1, 0, 0)
+                        : Vec3(0, std::cos(st.inclination), -std::sin(st.inclination));
+  const Vec3 back = st.stepover * step;
+  const SurfaceShape* surface = &path.surface();
+  return [=](const Vec3& offset) {
+    const Vec3 point = centre + offset;
+    if (surface->normal_residual(point.y(), point.z(), 0.0) >= 0) return false;
+    const Vec3 q = offset + back;
+    return (q - q.dot(feed) * feed).squaredNorm() >= R * R;
+  };
+}
+
 }  // namespace
 
 // Forces on a time grid chosen for the dynamics, the response, the deformations, and their sum
@@ -125,6 +144,7 @@ static void apply_effects(const Scene& scene, const Prepared& m, StageClock& clo
         st.spindle_rate = path.spindle_rate();
         st.depth_of_cut = cut.number("depth_of_cut");
         st.stepover = cut.number("stepover");
+        st.in_material = material_test(path, p, st, m.tool->radius());
         states[p].push_back(st);
         forces[p].push_back(
             in_table(scene.slot("force"), [&] { return m.force->evaluate(*m.tool, st); }));
@@ -163,6 +183,9 @@ static void apply_effects(const Scene& scene, const Prepared& m, StageClock& clo
   double largest = 0;
   for (const auto& c : corrections)
     for (const auto& v : c) largest = std::max(largest, v.cwiseAbs().maxCoeff());
+  result.peak_correction = largest;
+  for (const auto& pass : forces)
+    for (const auto& f : pass) result.peak_force = std::max(result.peak_force, f.force.norm());
   if (largest > m.tool->radius()) {
     const std::string table = m.dynamics ? "vibration" : m.deformations.front().first;
     throw InputError(scene.slot(table).where, table,

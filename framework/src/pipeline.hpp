@@ -38,6 +38,8 @@ struct RunResult {
   WorkCounts work;
   std::vector<std::string> effects;  // enabled effect tables that ran
   double dynamics_step = 0;          // s, the force/dynamics time grid (0: no effects)
+  double peak_force = 0;             // N, largest |F| over all samples
+  double peak_correction = 0;        // mm, largest path correction component
   Layout layout;
 };
 

@@ -11,6 +11,9 @@ namespace topomill::plugins {
 // (cos a cos phi, cos a sin phi, sin a) and the cutting direction v = s (-sin phi, cos phi, 0)
 // (s = +1 counter-clockwise). Its force on the tool is -dFt v - dFr n - dFa a: Eq. 20 in these
 // vectors, which reproduces MODEL.md's closed form (tested). Chip thickness t = max(0, fz f.n).
+// Elements count when they face the feed (t > 0), lie in the CATW and, when the core says so
+// (CutState::in_material), are in material: below the uncut surface, not removed by the
+// previous pass.
 class Armarego : public ForceModel {
  public:
   static Schema schema() {
@@ -51,6 +54,7 @@ class Armarego : public ForceModel {
         const Vec3 n(sa * cp, sa * sp, -ca), m(ca * cp, ca * sp, sa), v(-sense * sp, sense * cp, 0);
         const double t = st.feed_per_tooth * st.feed_direction.dot(n);
         if (t <= 0) continue;  // not in cut: the element faces away from the feed
+        if (st.in_material && !st.in_material(R * n)) continue;  // air: above or already cut
         const double db = R * da;
         const double slope = sa * tool.lag_slope(std::max(a, tool.min_polar_angle()));
         const double ds = db * std::sqrt(1 + slope * slope);

@@ -1,6 +1,8 @@
 // What force and deformation models need to know about the tool at one instant.
 #pragma once
 
+#include <functional>
+
 #include "topomill/types.hpp"
 
 namespace topomill {
@@ -16,6 +18,10 @@ struct CutState {
   double spindle_rate = 0.0;  // rad/s, signed: > 0 counter-clockwise seen from above
   double depth_of_cut = 0.0;  // ap, mm
   double stepover = 0.0;      // ae, mm
+  // Whether a point at `offset` (mm, CS2) from the ball centre is still workpiece material: below
+  // the uncut surface and outside what the previous pass removed. Set by the core; empty means
+  // "every point of the CATW", as in the paper's Eq. 21.
+  std::function<bool(const Vec3& offset)> in_material;
 };
 
 // Resultant cutting force on the tool (N, CS2) and the load centre: the force-weighted mean

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Installs topomill to a temporary prefix, builds sdk/template out of tree against that prefix
+# alone, runs its tests and its example scene through --plugin-path and TOPOMILL_PLUGIN_PATH, and
+# checks that the same plugin built for another ABI is refused with its message.
+# Usage: run_sdk_consumer.sh SOURCE_DIR BUILD_DIR WORK_DIR
+set -euo pipefail
+src=$1 build=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+prefix=$work/prefix
+fail() { echo "FAIL: $*"; exit 1; }
+
+cmake --install "$build" --prefix "$prefix" >/dev/null
+[ -x "$prefix/bin/topomill" ] || fail "no installed program"
+[ -f "$prefix/lib/cmake/topomill/topomillConfig.cmake" ] || fail "no CMake package"
+[ -f "$prefix/include/topomill/plugin.hpp" ] || fail "no public headers"
+[ -f "$prefix/lib/topomill/plugins/libtopomill_zmap.so" ] || fail "no built-in plugins"
+[ ! -e "$prefix/include/topomill/scene.hpp" ] || fail "host headers leaked into the SDK"
+
+gen=(); command -v ninja >/dev/null && gen=(-G Ninja)
+cmake -S "$src/sdk/template" -B "$work/template" "${gen[@]}" -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
+cmake --build "$work/template" >/dev/null
+(cd "$work/template" && ctest --output-on-failure >/dev/null) || fail "the template's own tests"
+
+topomill=$prefix/bin/topomill
+scene=$src/sdk/template/scenes/example.toml
+"$topomill" plugins --plugin-path "$work/template" | grep -q "ball_end_worn" || fail "not listed"
+"$topomill" describe ball_end_worn --plugin-path "$work/template" | grep -q "wear (number, mm" \
+  || fail "describe does not show the schema"
+"$topomill" run "$scene" -q --plugin-path "$work/template" --out "$work/out1" >/dev/null \
+  || fail "run with --plugin-path"
+grep -q '"library" : "'"$work"'/template/libtopomill_ball_end_worn.so"' "$work/out1/summary.json" \
+  || fail "summary does not name the plugin's library"
+TOPOMILL_PLUGIN_PATH="$work/template" "$topomill" run "$scene" -q --out "$work/out2" >/dev/null \
+  || fail "run with TOPOMILL_PLUGIN_PATH"
+
+# The same plugin built for another ABI is refused, with the library and both versions.
+cmake -S "$src/sdk/template" -B "$work/template_abi" "${gen[@]}" -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" -DBUILD_TESTING=OFF -DCMAKE_CXX_FLAGS="-DTOPOMILL_PLUGIN_ABI=999u" >/dev/null
+cmake --build "$work/template_abi" >/dev/null
+set +e
+err=$("$topomill" run "$scene" -q --plugin-path "$work/template_abi" --out "$work/out3" 2>&1)
+code=$?
+set -e
+[ $code -eq 2 ] || fail "ABI mismatch: exit $code, expected 2"
+echo "$err" | grep -q "libtopomill_ball_end_worn.so' built for topomill plugin ABI 999, this program provides ABI 1" \
+  || fail "ABI mismatch message: $err"
+echo "sdk consumer: ok"
