@@ -13,5 +13,6 @@ int cmd_run(const Args& args);
 int cmd_check(const Args& args);
 int cmd_plugins(const Args& args);
 int cmd_describe(const Args& args);
+int cmd_measure(const Args& args);
 
 }  // namespace topomill::cli

@@ -18,6 +18,7 @@ const Command kCommands[] = {
     {"check", topomill::cli::cmd_check, "validate a scene and print it resolved"},
     {"plugins", topomill::cli::cmd_plugins, "list the models available, per slot"},
     {"describe", topomill::cli::cmd_describe, "show a model's parameters"},
+    {"measure", topomill::cli::cmd_measure, "ISO 25178 parameters of a height-map file"},
 };
 
 void usage(std::ostream& os) {

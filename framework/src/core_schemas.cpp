@@ -76,8 +76,9 @@ Schema output_schema() {
   Schema s;
   s.add_string("dir", "Output directory, relative to the working directory (--out overrides)")
       .with_default(std::string());
-  s.add_string_array("formats", {"csv", "gsf", "png"},
-                     "Height-map files to write besides summary.json")
+  s.add_string_array("formats", {"csv", "gsf", "x3p", "sdf", "vts", "png"},
+                     "Height-map files to write besides summary.json (raw and residual maps; png: "
+                     "a heat map of the residual)")
       .with_default(std::vector<std::string>{"csv", "gsf", "png"});
   return s;
 }

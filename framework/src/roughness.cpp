@@ -21,16 +21,19 @@ double excess_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 }
 }  // namespace
 
-Roughness roughness(const HeightMap& map) {
+Roughness roughness(const HeightMap& map, const std::vector<std::uint8_t>& valid) {
   Roughness r;
   const auto& z = map.z;
-  const double n = static_cast<double>(z.size());
-  double sum = 0;
-  for (double v : z) sum += v;
+  auto ok = [&](std::size_t i) { return valid.empty() || valid[i] != 0; };
+  double n = 0, sum = 0;
+  for (std::size_t i = 0; i < z.size(); ++i)
+    if (ok(i)) sum += z[i], n += 1;
+  if (n == 0) return r;
   r.mean = sum / n;
   double m1 = 0, m2 = 0, m3 = 0, m4 = 0, hi = -INFINITY, lo = INFINITY;
-  for (double v : z) {
-    const double d = v - r.mean, d2 = d * d;
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    if (!ok(i)) continue;
+    const double d = z[i] - r.mean, d2 = d * d;
     m1 += std::abs(d), m2 += d2, m3 += d2 * d, m4 += d2 * d2;
     hi = std::max(hi, d), lo = std::min(lo, d);
   }
@@ -46,11 +49,13 @@ Roughness roughness(const HeightMap& map) {
   double slopes = 0, pairs = 0;
   for (std::size_t j = 0; j < g.ny; ++j)
     for (std::size_t i = 0; i + 1 < g.nx; ++i) {
+      if (!ok(g.index(i, j)) || !ok(g.index(i + 1, j))) continue;
       const double d = (map.at(i + 1, j) - map.at(i, j)) / g.dx;
       slopes += d * d, pairs += 1;
     }
   for (std::size_t j = 0; j + 1 < g.ny; ++j)
     for (std::size_t i = 0; i < g.nx; ++i) {
+      if (!ok(g.index(i, j)) || !ok(g.index(i, j + 1))) continue;
       const double d = (map.at(i, j + 1) - map.at(i, j)) / g.dy;
       slopes += d * d, pairs += 1;
     }
@@ -59,12 +64,13 @@ Roughness roughness(const HeightMap& map) {
   double excess = 0, flat = 0;
   for (std::size_t j = 0; j + 1 < g.ny; ++j)
     for (std::size_t i = 0; i + 1 < g.nx; ++i) {
+      if (!ok(g.index(i, j)) || !ok(g.index(i + 1, j)) || !ok(g.index(i, j + 1)) ||
+          !ok(g.index(i + 1, j + 1)))
+        continue;
       const Eigen::Vector3d a(0, 0, map.at(i, j)), b(g.dx, 0, map.at(i + 1, j)),
           c(g.dx, g.dy, map.at(i + 1, j + 1)), d(0, g.dy, map.at(i, j + 1));
-      const Eigen::Vector3d m(g.dx / 2, g.dy / 2, (a.z() + b.z() + c.z() + d.z()) / 4);
-      const double quarter = g.dx * g.dy / 4;
-      excess += excess_area(a, b, m, quarter) + excess_area(b, c, m, quarter) +
-                excess_area(c, d, m, quarter) + excess_area(d, a, m, quarter);
+      const double half = g.dx * g.dy / 2;
+      excess += excess_area(a, b, c, half) + excess_area(a, c, d, half);
       flat += g.dx * g.dy;
     }
   r.Sdr = flat > 0 ? 100.0 * excess / flat : 0.0;

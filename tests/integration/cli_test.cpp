@@ -93,3 +93,20 @@ TEST_CASE("every committed scene under paper, validation and examples passes che
     CHECK(r.exit_code == 0);
   }
 }
+
+TEST_CASE("measure on run's x3p output gives the run's own parameters", "[cli][metrology]") {
+  const std::string out = testing::temp_dir("run_x3p");
+  const auto r = run_topomill("run configs/examples/quick.toml -q --out '" + out +
+                              "' --set 'output.formats=[\"x3p\", \"sdf\", \"vts\"]'");
+  REQUIRE(r.exit_code == 0);
+  for (const std::string f : {"height_residual.x3p", "height_raw.sdf", "height_residual.vts"})
+    CHECK(fs::exists(out + "/" + f));
+  const auto m = run_topomill("measure '" + out + "/height_residual.x3p' --json");
+  REQUIRE(m.exit_code == 0);
+  const std::string summary = testing::read_file(out + "/summary.json");
+  auto sa = [](const std::string& json) {
+    const auto at = json.find("\"Sa\" : ");
+    return std::stod(json.substr(at + 7));
+  };
+  CHECK(sa(m.out) == Approx(sa(summary)).epsilon(1e-9));
+}

@@ -6,8 +6,12 @@
 
 #include "describe.hpp"
 #include "io/atomic_file.hpp"
-#include "io/height_map_files.hpp"
+#include "io/csv.hpp"
+#include "io/gsf.hpp"
 #include "io/png_heatmap.hpp"
+#include "io/sdf.hpp"
+#include "io/vts.hpp"
+#include "io/x3p.hpp"
 #include "log.hpp"
 #include "topomill/version.hpp"
 
@@ -64,6 +68,15 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
     } else if (format == "gsf") {
       write_gsf(path("height_raw.gsf"), result.raw, "topomill raw height");
       write_gsf(path("height_residual.gsf"), result.residual, "topomill residual height");
+    } else if (format == "x3p") {
+      write_x3p(path("height_raw.x3p"), result.raw);
+      write_x3p(path("height_residual.x3p"), result.residual);
+    } else if (format == "sdf") {
+      write_sdf(path("height_raw.sdf"), result.raw);
+      write_sdf(path("height_residual.sdf"), result.residual);
+    } else if (format == "vts") {
+      write_vts(path("height_raw.vts"), result.raw);
+      write_vts(path("height_residual.vts"), result.residual);
     } else if (format == "png") {
       HeatmapLabels labels;
       if (!unrolled) labels.y = "y (mm)";

@@ -1,0 +1,16 @@
+// ISO 25178-71 surface data files (.sdf): ASCII ("aISO-1.0": key = value lines, '*', the points,
+// '*', optional trailer, '*') and binary ("bISO-1.0": an 81-byte little-endian header, then the
+// points). Points are x fastest, z = value * Zscale metres.
+#pragma once
+
+#include <string>
+
+#include "metrology/surface.hpp"
+
+namespace topomill {
+
+Surface read_sdf(const std::string& path);
+// Binary, DataType 7 (float64), atomically.
+void write_sdf(const std::string& path, const HeightMap& map_mm);
+
+}  // namespace topomill

@@ -1,0 +1,245 @@
+#include "io/x3p.hpp"
+
+#include <md5.h>
+#include <zip.h>
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <pugixml.hpp>
+#include <sstream>
+
+#include "io/atomic_file.hpp"
+#include "topomill/error.hpp"
+
+namespace topomill {
+
+namespace {
+
+std::string md5_hex(const void* data, std::size_t size) {
+  char out[MD5_DIGEST_STRING_LENGTH];
+  MD5Data(static_cast<const std::uint8_t*>(data), size, out);
+  return out;
+}
+
+struct ZipCloser {
+  void operator()(zip_t* z) const { zip_discard(z); }
+};
+
+class Archive {
+ public:
+  explicit Archive(const std::string& path) : path_(path) {
+    int err = 0;
+    zip_.reset(zip_open(path.c_str(), ZIP_RDONLY | ZIP_CHECKCONS, &err));
+    if (!zip_) {
+      zip_error_t ze;
+      zip_error_init_with_code(&ze, err);
+      std::string why = zip_error_strerror(&ze);
+      zip_error_fini(&ze);
+      fail("not a readable x3p (zip) file: " + why);
+    }
+  }
+  bool has(const std::string& name) const {
+    return zip_name_locate(zip_.get(), name.c_str(), 0) >= 0;
+  }
+  std::string read(const std::string& name) const {
+    zip_stat_t st;
+    if (zip_stat(zip_.get(), name.c_str(), 0, &st) != 0) fail("the archive has no '" + name + "'");
+    std::unique_ptr<zip_file_t, int (*)(zip_file_t*)> f(zip_fopen(zip_.get(), name.c_str(), 0),
+                                                        zip_fclose);
+    if (!f) fail("cannot open '" + name + "' in the archive");
+    std::string data(st.size, '\0');
+    if (zip_fread(f.get(), data.data(), st.size) != static_cast<zip_int64_t>(st.size))
+      fail("'" + name + "' is truncated or corrupt");
+    return data;
+  }
+  [[noreturn]] void fail(const std::string& why) const {
+    throw InputError(SourceRef{path_}, "", why);
+  }
+
+ private:
+  std::string path_;
+  std::unique_ptr<zip_t, ZipCloser> zip_;
+};
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
+
+Surface read_x3p(const std::string& path) {
+  Archive zip(path);
+  const std::string xml = zip.read("main.xml");
+  if (zip.has("md5checksum.hex")) {
+    std::istringstream line(zip.read("md5checksum.hex"));
+    std::string want;
+    line >> want;
+    if (lower(want) != md5_hex(xml.data(), xml.size()))
+      zip.fail("the MD5 checksum of main.xml does not match md5checksum.hex");
+  }
+  pugi::xml_document doc;
+  if (!doc.load_buffer(xml.data(), xml.size())) zip.fail("main.xml is not well-formed XML");
+  const pugi::xml_node root = doc.first_element_by_path("p:ISO5436_2");
+  if (!root) zip.fail("main.xml has no p:ISO5436_2 root element");
+  const pugi::xml_node axes = root.child("Record1").child("Axes");
+  const pugi::xml_node dim = root.child("Record3").child("MatrixDimension");
+  if (!axes || !dim) zip.fail("main.xml lacks Record1/Axes or Record3/MatrixDimension");
+  const long nx = dim.child("SizeX").text().as_llong(-1),
+             ny = dim.child("SizeY").text().as_llong(-1);
+  const long nz = dim.child("SizeZ").text().as_llong(1);
+  if (nx < 1 || ny < 1 || nz != 1 || nx > 100000 || ny > 100000 || nx * ny > 400000000L)
+    zip.fail("unsupported matrix dimension " + std::to_string(nx) + " x " + std::to_string(ny) +
+             " x " + std::to_string(nz) + " (one layer, up to 4e8 points)");
+  auto increment = [&](const char* axis) {
+    const double v = axes.child(axis).child("Increment").text().as_double(0);
+    if (!(v > 0) || !std::isfinite(v))
+      zip.fail(std::string("axis ") + axis + " has no positive Increment");
+    return v;
+  };
+  const pugi::xml_node cz = axes.child("CZ");
+  const std::string type = cz.child("DataType").text().as_string("D");
+  const bool scaled =
+      cz.child("AxisType").text().as_string("A") == std::string("I") || type == "I" || type == "L";
+  const double z_inc = scaled ? cz.child("Increment").text().as_double(1.0) : 1.0;
+  const double z_off = scaled ? cz.child("Offset").text().as_double(0.0) : 0.0;
+
+  Surface s;
+  s.source = path;
+  Grid g;
+  g.nx = static_cast<std::size_t>(nx), g.ny = static_cast<std::size_t>(ny);
+  g.dx = increment("CX") * 1e3, g.dy = increment("CY") * 1e3;
+  s.map = HeightMap(g);
+  const std::size_t n = g.size();
+  s.valid.assign(n, 1);
+
+  const pugi::xml_node link = root.child("Record3").child("DataLink");
+  const pugi::xml_node list = root.child("Record3").child("DataList");
+  if (link) {
+    const std::string name = link.child("PointDataLink").text().as_string();
+    const std::string data = zip.read(name);
+    const std::string want = link.child("MD5ChecksumPointData").text().as_string();
+    if (!want.empty() && lower(want) != md5_hex(data.data(), data.size()))
+      zip.fail("the MD5 checksum of " + name + " does not match MD5ChecksumPointData");
+    const std::size_t width = type == "I"                  ? 2
+                              : type == "L" || type == "F" ? 4
+                              : type == "D"                ? 8
+                                                           : 0;
+    if (!width) zip.fail("unknown CZ DataType '" + type + "' (expected I, L, F or D)");
+    if (data.size() != n * width)
+      zip.fail(name + " holds " + std::to_string(data.size()) + " bytes; " + std::to_string(nx) +
+               " x " + std::to_string(ny) + " points of type " + type + " need " +
+               std::to_string(n * width));
+    for (std::size_t i = 0; i < n; ++i) {
+      const char* p = data.data() + i * width;  // little-endian, as the standard says
+      double v = 0;
+      if (type == "I") {
+        std::int16_t x;
+        std::memcpy(&x, p, 2);
+        v = x;
+      }
+      if (type == "L") {
+        std::int32_t x;
+        std::memcpy(&x, p, 4);
+        v = x;
+      }
+      if (type == "F") {
+        float x;
+        std::memcpy(&x, p, 4);
+        v = x;
+      }
+      if (type == "D") std::memcpy(&v, p, 8);
+      s.map.z[i] = (z_off + z_inc * v) * 1e3;
+    }
+    const std::string valid_name = link.child("ValidPointsLink").text().as_string();
+    if (!valid_name.empty()) {
+      const std::string bits = zip.read(valid_name);
+      const std::string vwant = link.child("MD5ChecksumValidPoints").text().as_string();
+      if (!vwant.empty() && lower(vwant) != md5_hex(bits.data(), bits.size()))
+        zip.fail("the MD5 checksum of " + valid_name + " does not match MD5ChecksumValidPoints");
+      if (bits.size() < (n + 7) / 8)
+        zip.fail(valid_name + " holds " + std::to_string(bits.size()) + " bytes; " +
+                 std::to_string(n) + " points need " + std::to_string((n + 7) / 8));
+      for (std::size_t i = 0; i < n; ++i)
+        s.valid[i] = (static_cast<unsigned char>(bits[i / 8]) >> (i % 8)) & 1u;
+    }
+  } else if (list) {
+    std::size_t i = 0;
+    for (pugi::xml_node d = list.child("Datum"); d; d = d.next_sibling("Datum"), ++i) {
+      if (i >= n) zip.fail("DataList holds more points than the matrix dimension");
+      const std::string text = d.text().as_string();
+      if (text.empty()) {
+        s.valid[i] = 0;  // an empty Datum is an invalid point
+        s.map.z[i] = 0;
+      } else {
+        s.map.z[i] = (z_off + z_inc * d.text().as_double()) * 1e3;
+      }
+    }
+    if (i != n)
+      zip.fail("DataList holds " + std::to_string(i) + " points; the matrix has " +
+               std::to_string(n));
+  } else {
+    zip.fail("Record3 has neither a DataLink nor a DataList");
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (s.valid[i] && !std::isfinite(s.map.z[i]))
+      zip.fail("point " + std::to_string(i) + " is not finite (NaN or Inf) yet marked valid");
+  return s;
+}
+
+void write_x3p(const std::string& path, const HeightMap& map) {
+  const Grid& g = map.grid;
+  std::string data(g.size() * 8, '\0');
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    const double v = map.z[i] * 1e-3;
+    std::memcpy(data.data() + i * 8, &v, 8);
+  }
+  std::ostringstream xml;
+  xml.precision(17);
+  xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      << "<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\">\n"
+      << "<Record1><Revision>ISO5436 - 2000</Revision><FeatureType>SUR</FeatureType><Axes>\n"
+      << "<CX><AxisType>I</AxisType><DataType>D</DataType><Increment>" << g.dx * 1e-3
+      << "</Increment><Offset>" << g.x0 * 1e-3 << "</Offset></CX>\n"
+      << "<CY><AxisType>I</AxisType><DataType>D</DataType><Increment>" << g.dy * 1e-3
+      << "</Increment><Offset>" << g.y0 * 1e-3 << "</Offset></CY>\n"
+      << "<CZ><AxisType>A</AxisType><DataType>D</DataType></CZ></Axes></Record1>\n"
+      << "<Record2><Date>1970-01-01T00:00:00</Date><Instrument><Manufacturer>topomill</"
+         "Manufacturer>"
+      << "<Model>simulation</Model><Serial>-</Serial><Version>"
+      << "0.1.0"
+      << "</Version></Instrument><CalibrationDate>1970-01-01T00:00:00</CalibrationDate>"
+      << "<ProbingSystem><Type>Software</Type><Identification>topomill</Identification>"
+      << "</ProbingSystem><Comment>simulated surface</Comment></Record2>\n"
+      << "<Record3><MatrixDimension><SizeX>" << g.nx << "</SizeX><SizeY>" << g.ny
+      << "</SizeY><SizeZ>1</SizeZ></MatrixDimension><DataLink><PointDataLink>bindata/data.bin"
+      << "</PointDataLink><MD5ChecksumPointData>" << md5_hex(data.data(), data.size())
+      << "</MD5ChecksumPointData></DataLink></Record3>\n"
+      << "<Record4><ChecksumFile>md5checksum.hex</ChecksumFile></Record4>\n</p:ISO5436_2>\n";
+  const std::string main_xml = xml.str();
+  const std::string checksum = md5_hex(main_xml.data(), main_xml.size()) + " *main.xml\n";
+
+  write_atomically_to(path, [&](const std::string& tmp) {
+    int err = 0;
+    zip_t* z = zip_open(tmp.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+    if (!z) throw std::runtime_error("cannot create '" + path + "'");
+    auto add = [&](const char* name, const std::string& content) {
+      zip_source_t* src = zip_source_buffer(z, content.data(), content.size(), 0);
+      if (!src || zip_file_add(z, name, src, ZIP_FL_OVERWRITE) < 0) {
+        if (src) zip_source_free(src);
+        zip_discard(z);
+        throw std::runtime_error("cannot write '" + std::string(name) + "' into '" + path + "'");
+      }
+    };
+    add("main.xml", main_xml);
+    add("bindata/data.bin", data);
+    add("md5checksum.hex", checksum);
+    if (zip_close(z) != 0) {
+      zip_discard(z);
+      throw std::runtime_error("cannot write '" + path + "'");
+    }
+  });
+}
+
+}  // namespace topomill

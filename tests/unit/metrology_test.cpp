@@ -1,0 +1,252 @@
+// Reading instrument files and measuring them: the reference values agreed by independent
+// implementations (../shared/refdata/README.md), the openGPS samples, round trips through every
+// writer, form removal and Gaussian filters against analytic surfaces, and corrupt files.
+#include <zip.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <pugixml.hpp>
+
+#include "io/csv.hpp"
+#include "io/gsf.hpp"
+#include "io/sdf.hpp"
+#include "io/vts.hpp"
+#include "io/x3p.hpp"
+#include "metrology/form_removal.hpp"
+#include "metrology/gaussian_filter.hpp"
+#include "metrology/read_surface.hpp"
+#include "roughness.hpp"
+#include "support/run_command.hpp"
+#include "topomill/error.hpp"
+
+using namespace topomill;
+
+namespace {
+std::string refdata(const std::string& name) {
+  return std::string(TOPOMILL_REFDATA_DIR) + "/" + name;
+}
+
+Surface analytic(std::size_t nx, std::size_t ny, double dx, double (*f)(double, double)) {
+  Surface s;
+  Grid g;
+  g.nx = nx, g.ny = ny, g.dx = dx, g.dy = dx;
+  s.map = HeightMap(g);
+  for (std::size_t j = 0; j < ny; ++j)
+    for (std::size_t i = 0; i < nx; ++i) s.map.at(i, j) = f(g.x(i), g.y(j));
+  return s;
+}
+
+double max_abs(const Surface& s) {
+  double m = 0;
+  for (std::size_t i = 0; i < s.map.z.size(); ++i)
+    if (s.is_valid(i)) m = std::max(m, std::abs(s.map.z[i]));
+  return m;
+}
+
+// An x3p built by hand, for corrupt variants.
+void write_zip(const std::string& path,
+               const std::vector<std::pair<std::string, std::string>>& files) {
+  int err = 0;
+  zip_t* z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+  REQUIRE(z);
+  for (const auto& [name, content] : files)
+    zip_file_add(z, name.c_str(), zip_source_buffer(z, content.data(), content.size(), 0), 0);
+  REQUIRE(zip_close(z) == 0);
+}
+}  // namespace
+
+TEST_CASE("x3p-2.x3p gives the agreed reference values", "[metrology][refdata]") {
+  const Surface s = read_x3p(refdata("surfacetopography/x3p-2.x3p"));
+  REQUIRE(s.map.grid.nx == 650);
+  REQUIRE(s.map.grid.ny == 650);
+  CHECK(s.map.grid.dx == Approx(1.27656509837346e-07 * 1e3).epsilon(1e-12));
+  CHECK(s.valid_count() == 650u * 650u);
+  const Roughness r = roughness(s.map, s.valid);  // mm; the reference is in metres
+  CHECK(r.mean * 1e-3 == Approx(-2.49182416930559e-09).epsilon(1e-9));
+  CHECK(r.Sa * 1e-3 == Approx(6.19546556887485e-08).epsilon(1e-9));
+  CHECK(r.Sq * 1e-3 == Approx(7.72803327359775e-08).epsilon(1e-9));
+  CHECK(r.Sp * 1e-3 == Approx(2.42407337581538e-07).epsilon(1e-9));
+  CHECK(r.Sv * 1e-3 == Approx(3.11928862418462e-07).epsilon(1e-9));
+  CHECK(r.Sz * 1e-3 == Approx(5.543362e-07).epsilon(1e-9));
+  CHECK(r.Ssk == Approx(-0.346788601267018).epsilon(1e-9));
+  CHECK(r.Sku == Approx(2.94193373526491).epsilon(1e-9));
+  CHECK(r.Sdq == Approx(0.0620740474978505).epsilon(1e-9));
+  CHECK(r.Sdr == Approx(0.1920252626).epsilon(1e-9));  // two triangles per cell: see roughness.hpp
+}
+
+TEST_CASE("sdf-1.sdf is read and measured to the reference values", "[metrology][refdata]") {
+  const Surface s = read_sdf(refdata("surfacetopography/sdf-1.sdf"));
+  REQUIRE(s.map.grid.nx == 7);
+  REQUIRE(s.map.grid.ny == 4);
+  const Roughness r = roughness(s.map);
+  CHECK(r.Sa * 1e-3 == Approx(1.15801275510204e-08).epsilon(1e-9));
+  CHECK(r.Sku == Approx(2.57727307520472).epsilon(1e-9));
+  CHECK(r.Sdq == Approx(0.0171224878773825).epsilon(1e-9));
+}
+
+TEST_CASE("the openGPS samples: validity bits, integer scaling, XML and binary alike",
+          "[metrology]") {
+  const Surface xml = read_x3p(refdata("opengps_samples/ISO5436-sample1.x3p"));
+  const Surface bin = read_x3p(refdata("opengps_samples/ISO5436-sample4_bin.x3p"));
+  for (const Surface* s : {&xml, &bin}) {
+    REQUIRE(s->map.grid.nx == 4);
+    REQUIRE(s->map.grid.ny == 4);
+    CHECK(s->valid_count() == 15);
+    CHECK(s->valid[7] == 0);  // README: point 7 is invalid
+  }
+  // int16 986 with Increment 0.001 and Offset -0.5: z = -0.5 + 0.986 m.
+  CHECK(bin.map.z[0] == Approx((-0.5 + 0.001 * 986) * 1e3).epsilon(1e-12));
+  for (std::size_t i = 0; i < 16; ++i)
+    if (i != 7) CHECK(bin.map.z[i] == Approx(xml.map.z[i]).margin(0.5e-3 * 1e3 + 1e-9));
+}
+
+TEST_CASE("every writer round-trips through its reader", "[metrology][io]") {
+  Surface s = analytic(23, 17, 0.004, [](double x, double y) {
+    return 1e-3 * std::sin(40 * x) * std::cos(30 * y) + 0.2;
+  });
+  const std::string dir = testing::temp_dir("roundtrip");
+  std::filesystem::create_directories(dir);
+  write_x3p(dir + "/a.x3p", s.map);
+  write_sdf(dir + "/a.sdf", s.map);
+  write_gsf(dir + "/a.gsf", s.map, "t");
+  write_csv(dir + "/a.csv", s.map);
+  const Surface x = read_x3p(dir + "/a.x3p"), d = read_sdf(dir + "/a.sdf"),
+                gs = read_gsf(dir + "/a.gsf"), c = read_csv(dir + "/a.csv", 0.004);
+  for (const Surface* r : {&x, &d, &gs, &c}) {
+    REQUIRE(r->map.grid.nx == 23);
+    REQUIRE(r->map.grid.ny == 17);
+    CHECK(r->map.grid.dx == Approx(0.004).epsilon(1e-6));
+  }
+  for (std::size_t i = 0; i < s.map.z.size(); ++i) {
+    CHECK(x.map.z[i] == Approx(s.map.z[i]).epsilon(1e-15));  // float64, through metres
+    CHECK(d.map.z[i] == Approx(s.map.z[i]).epsilon(1e-15));
+    CHECK(gs.map.z[i] == Approx(s.map.z[i]).epsilon(1e-7));  // float32
+    CHECK(c.map.z[i] == Approx(s.map.z[i]).epsilon(1e-8));   // 9 digits
+  }
+  write_vts(dir + "/a.vts", s.map);
+  pugi::xml_document vts;
+  REQUIRE(vts.load_file((dir + "/a.vts").c_str()));
+  CHECK(
+      std::string(vts.child("VTKFile").child("StructuredGrid").attribute("WholeExtent").value()) ==
+      "0 22 0 16 0 0");
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    CHECK(e.path().extension() != ".partial");
+}
+
+TEST_CASE("form removal takes planes, polynomials and arcs to zero", "[metrology][form]") {
+  auto plane = analytic(30, 20, 0.01, [](double x, double y) { return 0.3 + 0.02 * x - 0.05 * y; });
+  CHECK(max_abs(remove_form(plane, Form::parse("plane", "--form"))) < 1e-13);
+  auto quad = analytic(30, 20, 0.01,
+                       [](double x, double y) { return 0.1 * x * x - 0.2 * x * y + y * y * y; });
+  CHECK(max_abs(remove_form(quad, Form::parse("poly:3", "--form"))) < 1e-12);
+  CHECK(max_abs(remove_form(quad, Form::parse("plane", "--form"))) > 1e-4);
+  auto convex = analytic(10, 40, 0.02, [](double, double y) {
+    return std::sqrt(50.0 * 50.0 - (y + 10) * (y + 10)) - 60;
+  });
+  CHECK(max_abs(remove_form(convex, Form::parse("arc", "--form"))) < 1e-9);
+  auto concave = analytic(10, 40, 0.02, [](double, double y) {
+    return 25 - std::sqrt(20.0 * 20.0 - (y - 3) * (y - 3));
+  });
+  CHECK(max_abs(remove_form(concave, Form::parse("arc", "--form"))) < 1e-9);
+  // Form removal leaves the roughness: a cosine over whole periods (orthogonal to a plane) on a
+  // tilted plane measures as the cosine.
+  auto sine = analytic(400, 5, 0.001, [](double x, double y) {
+    return 2e-3 * std::cos(2 * M_PI * x / 0.1) + 0.01 * x + 0.004 * y;
+  });
+  CHECK(roughness(remove_form(sine, Form::parse("plane", "--form")).map).Sa ==
+        Approx(2 * 2e-3 / M_PI).epsilon(0.01));
+  CHECK_THROWS_AS(Form::parse("poly:9", "--form"), InputError);
+}
+
+TEST_CASE("the Gaussian filter passes 50 % at the cut-off, long waves whole, short waves not",
+          "[metrology][filter]") {
+  const double lc = 0.08;
+  auto amplitude_after = [&](double wavelength, bool low_pass) {
+    Surface s;
+    Grid g;
+    g.nx = 2001, g.ny = 3, g.dx = 0.0005, g.dy = 0.0005;
+    s.map = HeightMap(g);
+    for (std::size_t j = 0; j < g.ny; ++j)
+      for (std::size_t i = 0; i < g.nx; ++i)
+        s.map.at(i, j) = std::sin(2 * M_PI * g.x(i) / wavelength);
+    const Surface f = low_pass ? gaussian_lowpass(s, lc) : l_filter(s, lc);
+    double a = 0;  // away from the ends, where the renormalised kernel is whole
+    for (std::size_t i = 400; i < 1600; ++i) a = std::max(a, std::abs(f.map.at(i, 1)));
+    return a;
+  };
+  CHECK(amplitude_after(lc, true) == Approx(0.5).epsilon(0.01));
+  CHECK(amplitude_after(10 * lc, true) > 0.99);
+  CHECK(amplitude_after(lc / 10, true) < 0.01);
+  CHECK(amplitude_after(lc / 10, false) > 0.99);  // the L-filter keeps the roughness
+  CHECK(amplitude_after(10 * lc, false) < 0.01);  // and removes the waviness
+}
+
+TEST_CASE("corrupt and inconsistent files are refused with what is wrong", "[metrology][errors]") {
+  const std::string dir = testing::temp_dir("corrupt");
+  std::filesystem::create_directories(dir);
+  const std::string good = refdata("surfacetopography/x3p-2.x3p");
+  // Truncated zip.
+  {
+    std::ifstream in(good, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    std::ofstream(dir + "/trunc.x3p", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    CHECK_THROWS_WITH(read_x3p(dir + "/trunc.x3p"),
+                      Catch::Contains("trunc.x3p: error: not a readable x3p"));
+  }
+  // main.xml changed under its checksum, and point data of the wrong size.
+  std::string xml;
+  {
+    int e = 0;
+    zip_t* z = zip_open(good.c_str(), ZIP_RDONLY, &e);
+    zip_stat_t st;
+    zip_stat(z, "main.xml", 0, &st);
+    xml.resize(st.size);
+    zip_file_t* f = zip_fopen(z, "main.xml", 0);
+    zip_fread(f, xml.data(), st.size);
+    zip_fclose(f);
+    zip_discard(z);
+  }
+  write_zip(dir + "/md5.x3p",
+            {{"main.xml", xml + " "},
+             {"md5checksum.hex", "00000000000000000000000000000000 *main.xml\n"}});
+  CHECK_THROWS_WITH(read_x3p(dir + "/md5.x3p"),
+                    Catch::Contains("MD5 checksum of main.xml does not match"));
+  write_zip(dir + "/size.x3p", {{"main.xml", xml}, {"bindata/data.bin", std::string(80, '\0')}});
+  CHECK_THROWS_WITH(
+      read_x3p(dir + "/size.x3p"),
+      Catch::Contains("does not match MD5ChecksumPointData") || Catch::Contains("need 3380000"));
+  // sdf with too few points, and with a NaN.
+  std::ofstream(dir + "/few.sdf") << "aISO-1.0\nNumPoints = 3\nNumProfiles = 2\nXscale = "
+                                     "1e-6\nYscale = 1e-6\nZscale = 1e-6\n*\n1 2 3\n4 5\n*\n";
+  CHECK_THROWS_WITH(read_sdf(dir + "/few.sdf"),
+                    Catch::Contains("holds 5 points; the header says 6"));
+  std::ofstream(dir + "/nan.sdf") << "aISO-1.0\nNumPoints = 2\nNumProfiles = 1\nXscale = "
+                                     "1e-6\nYscale = 1e-6\nZscale = 1e-6\n*\n1 nan\n*\n";
+  CHECK_THROWS_WITH(read_sdf(dir + "/nan.sdf"), Catch::Contains("point 1 is not finite"));
+  std::ofstream(dir + "/short.gsf", std::ios::binary)
+      << std::string("Gwyddion Simple Field 1.0\nXRes = 10\nYRes = 10\n") + std::string(3, '\0') +
+             "abcd";
+  CHECK_THROWS_WITH(read_gsf(dir + "/short.gsf"), Catch::Contains("truncated"));
+  CHECK_THROWS_WITH(read_surface(dir + "/x.png"), Catch::Contains("unknown format '.png'"));
+}
+
+TEST_CASE("measure reports the parameters and refuses bad files with exit code 2",
+          "[metrology][cli]") {
+  const auto ok =
+      testing::run_topomill("measure '" + refdata("surfacetopography/sdf-1.sdf") + "' --json");
+  REQUIRE(ok.exit_code == 0);
+  CHECK(ok.out.find("\"Sa\" : 0.0115801") != std::string::npos);  // um
+  const auto bad = testing::run_topomill("measure '" + refdata("surfacetopography/sdf-1.sdf") +
+                                         "' --form poly:0");
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.err.find("expected none, plane, poly:N") != std::string::npos);
+  const std::string dir = testing::temp_dir("measure_bad");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/bad.x3p") << "not a zip";
+  const auto corrupt = testing::run_topomill("measure '" + dir + "/bad.x3p'");
+  CHECK(corrupt.exit_code == 2);
+  CHECK(corrupt.err.find("bad.x3p: error: not a readable x3p") != std::string::npos);
+  CHECK_FALSE(corrupt.crashed);
+}
