@@ -200,6 +200,7 @@ TEST_CASE("corrupt and inconsistent files are refused with what is wrong", "[met
   {
     int e = 0;
     zip_t* z = zip_open(good.c_str(), ZIP_RDONLY, &e);
+    REQUIRE(z);
     zip_stat_t st;
     zip_stat(z, "main.xml", 0, &st);
     xml.resize(st.size);
