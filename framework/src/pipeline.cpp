@@ -150,7 +150,9 @@ static void apply_effects(const Scene& scene, const Prepared& m, StageClock& clo
             in_table(scene.slot("force"), [&] { return m.force->evaluate(*m.tool, st); }));
       }
     }
-    result.work["force_samples"] = states.size() * (states.empty() ? 0 : states[0].size());
+    std::uint64_t samples = 0;
+    for (const auto& pass : states) samples += pass.size();
+    result.work["force_samples"] = samples;
   });
 
   std::vector<std::vector<Vec3>> corrections(path.passes());

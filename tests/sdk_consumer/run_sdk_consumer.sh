@@ -2,9 +2,10 @@
 # Installs topomill to a temporary prefix, builds sdk/template out of tree against that prefix
 # alone, runs its tests and its example scene through --plugin-path and TOPOMILL_PLUGIN_PATH, and
 # checks that the same plugin built for another ABI is refused with its message.
-# Usage: run_sdk_consumer.sh SOURCE_DIR BUILD_DIR WORK_DIR
+# Usage: run_sdk_consumer.sh SOURCE_DIR BUILD_DIR WORK_DIR [EXTRA_FLAGS]
+# EXTRA_FLAGS (e.g. the sanitizers') are used for the template too, as a plugin author would.
 set -euo pipefail
-src=$1 build=$2 work=$3
+src=$1 build=$2 work=$3 extra=${4:-}
 rm -rf "$work" && mkdir -p "$work"
 prefix=$work/prefix
 fail() { echo "FAIL: $*"; exit 1; }
@@ -17,8 +18,9 @@ cmake --install "$build" --prefix "$prefix" >/dev/null
 [ ! -e "$prefix/include/topomill/scene.hpp" ] || fail "host headers leaked into the SDK"
 
 gen=(); command -v ninja >/dev/null && gen=(-G Ninja)
+flags=(-DCMAKE_CXX_FLAGS="$extra" -DCMAKE_EXE_LINKER_FLAGS="$extra" -DCMAKE_MODULE_LINKER_FLAGS="$extra")
 cmake -S "$src/sdk/template" -B "$work/template" "${gen[@]}" -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
+  -DCMAKE_PREFIX_PATH="$prefix" "${flags[@]}" >/dev/null
 cmake --build "$work/template" >/dev/null
 (cd "$work/template" && ctest --output-on-failure >/dev/null) || fail "the template's own tests"
 
@@ -36,7 +38,8 @@ TOPOMILL_PLUGIN_PATH="$work/template" "$topomill" run "$scene" -q --out "$work/o
 
 # The same plugin built for another ABI is refused, with the library and both versions.
 cmake -S "$src/sdk/template" -B "$work/template_abi" "${gen[@]}" -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_PREFIX_PATH="$prefix" -DBUILD_TESTING=OFF -DCMAKE_CXX_FLAGS="-DTOPOMILL_PLUGIN_ABI=999u" >/dev/null
+  -DCMAKE_PREFIX_PATH="$prefix" -DBUILD_TESTING=OFF "${flags[@]}" \
+  -DCMAKE_CXX_FLAGS="$extra -DTOPOMILL_PLUGIN_ABI=999u" >/dev/null
 cmake --build "$work/template_abi" >/dev/null
 set +e
 err=$("$topomill" run "$scene" -q --plugin-path "$work/template_abi" --out "$work/out3" 2>&1)
