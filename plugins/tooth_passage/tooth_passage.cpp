@@ -174,6 +174,41 @@ class ToothPassage : public TopographyEvaluator {
     const double t_bottom = 0.5 * (a + b);
     if (envelope(t_bottom) >= best_so_far) return INFINITY;  // this pass cannot lower the node
 
+    // All crossings of one tooth within half a revolution of `guess`. Usually the secant step
+    // finds the one crossing there; close to the tool's axis (the node's azimuth then turns fast,
+    // at feed / distance) or where it fails, the window is scanned for every sign change of g
+    // (skipping the jumps of its wrap at +-pi) and each bracket bisected.
+    const double rev = kTwoPi / std::abs(omega);
+    const double near_axis = 10 * path.feed_speed() / std::abs(omega);
+    std::vector<double> roots;
+    auto passages_near = [&](int tooth, double guess) {
+      roots.clear();
+      const double t = crossing(tooth, guess);
+      const Vec3 c = path.centre(p, t);
+      const double rho = std::hypot(x - c.x(), y - c.y());
+      if (std::abs(probe(tooth, t).g) < 1e-9 && rho > near_axis) {
+        roots.push_back(t);
+        return;
+      }
+      constexpr int kSamples = 48;
+      double ta = guess - rev / 2, ga = probe(tooth, ta).g;
+      for (int k = 1; k <= kSamples; ++k) {
+        const double tb = guess - rev / 2 + rev * k / kSamples, gb = probe(tooth, tb).g;
+        if ((ga < 0) != (gb < 0) && std::abs(gb - ga) < M_PI) {
+          double lo_t = ta, hi_t = tb, lo_g = ga;
+          for (int it = 0; it < 50 && hi_t - lo_t > 1e-13 * rev; ++it) {
+            const double mid = 0.5 * (lo_t + hi_t), gm = probe(tooth, mid).g;
+            if ((gm < 0) == (lo_g < 0))
+              lo_t = mid, lo_g = gm;
+            else
+              hi_t = mid;
+          }
+          roots.push_back(0.5 * (lo_t + hi_t));
+        }
+        ta = tb, ga = gb;
+      }
+    };
+
     double best = INFINITY;
     for (int tooth = 0; tooth < tool.teeth(); ++tooth) {
       const double t_first = crossing(tooth, t_bottom);
@@ -181,18 +216,24 @@ class ToothPassage : public TopographyEvaluator {
         double last = INFINITY;
         int rising = 0;
         for (int m = (dir > 0 ? 0 : 1); m < 100000 && rising < 2; ++m) {
-          const double guess = t_first + dir * m * period * tool.teeth();
-          if (guess < 0 || guess > t_end) break;
-          const double t = m == 0 ? t_first : crossing(tooth, guess);
-          const Probe q = probe(tooth, t);
-          ++visited;
-          if (!std::isfinite(q.height)) {  // off the ball entirely: past the node
+          const double guess = t_first + dir * m * rev;
+          if (guess < -rev / 2 || guess > t_end + rev / 2) break;
+          passages_near(tooth, guess);
+          double lowest = INFINITY;
+          for (double t : roots) {
+            if (t < 0 || t > t_end) continue;
+            const Probe q = probe(tooth, t);
+            ++visited;
+            if (!std::isfinite(q.height)) continue;
+            if (q.over) best = std::min(best, q.height);
+            lowest = std::min(lowest, q.height);
+          }
+          if (!std::isfinite(lowest)) {  // off the ball: past the node
             if (++rising >= 2) break;
             continue;
           }
-          if (q.over && std::abs(q.g) < 1e-6) best = std::min(best, q.height);
-          rising = q.height > last ? rising + 1 : 0;
-          last = q.height;
+          rising = lowest > last ? rising + 1 : 0;
+          last = lowest;
         }
       }
     }
