@@ -30,6 +30,16 @@ po::variables_map parse(const std::vector<std::string>& args, const po::options_
   return vm;
 }
 
+po::variables_map parse_with_positional(const std::vector<std::string>& args,
+                                        const po::options_description& visible, const char* name,
+                                        std::string& value, Common& common) {
+  po::options_description all;
+  all.add(visible).add_options()(name, po::value(&value));
+  po::positional_options_description pos;
+  pos.add(name, 1);
+  return parse(args, all, pos, common);
+}
+
 std::vector<PluginCatalog::Dir> search_path(const Common& common,
                                             const std::vector<std::string>& scene_paths) {
   std::vector<PluginCatalog::Dir> dirs;

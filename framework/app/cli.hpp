@@ -24,6 +24,11 @@ po::options_description common_options(Common& common);
 po::variables_map parse(const std::vector<std::string>& args, const po::options_description& opts,
                         const po::positional_options_description& positional, Common& common);
 
+// parse() with one positional argument `name` stored in `value` (not shown in --help).
+po::variables_map parse_with_positional(const std::vector<std::string>& args,
+                                        const po::options_description& visible, const char* name,
+                                        std::string& value, Common& common);
+
 // Search order: --plugin-path, the scene's plugin_paths, TOPOMILL_PLUGIN_PATH, built-in.
 std::vector<PluginCatalog::Dir> search_path(const Common& common,
                                             const std::vector<std::string>& scene_paths = {});

@@ -54,13 +54,7 @@ int cmd_describe(const Args& args) {
       "markdown", po::bool_switch(&markdown), "print Markdown (with --all: the scene reference)")(
       "all", po::bool_switch(&all), "describe the core tables and every model");
   opts.add(common_options(common));
-  po::options_description hidden;
-  hidden.add_options()("name", po::value(&name));
-  po::options_description everything;
-  everything.add(opts).add(hidden);
-  po::positional_options_description pos;
-  pos.add("name", 1);
-  parse(args, everything, pos, common);
+  parse_with_positional(args, opts, "name", name, common);
   if (common.help) {
     std::cout << opts << "\n";
     return 0;

@@ -27,11 +27,7 @@ int cmd_measure(const Args& args) {
       "spacing", po::value(&spacing), "node spacing in mm, for CSV files (heights in um)")(
       "json", po::bool_switch(&json), "print JSON");
   opts.add(common_options(common));
-  po::options_description all;
-  all.add(opts).add_options()("file", po::value(&file));
-  po::positional_options_description pos;
-  pos.add("file", 1);
-  parse(args, all, pos, common);
+  parse_with_positional(args, opts, "file", file, common);
   if (common.help) {
     std::cout << opts << "\n";
     return 0;

@@ -11,13 +11,8 @@ void add_scene_options(po::options_description& opts, SceneOptions& so) {
 
 LoadedScene load_scene(const Args& args, const po::options_description& opts, SceneOptions& so,
                        bool check_unused) {
-  po::options_description all;
-  all.add(opts);
-  all.add_options()("scene", po::value(&so.scene_file));
-  po::positional_options_description pos;
-  pos.add("scene", 1);
   LoadedScene out;
-  out.vm = parse(args, all, pos, so.common);
+  out.vm = parse_with_positional(args, opts, "scene", so.scene_file, so.common);
   if (so.common.help) return out;
   if (so.scene_file.empty())
     throw InputError(SourceRef{"command line"}, "", "a scene file is required (see --help)");
