@@ -43,34 +43,26 @@ void require_finite(const HeightMap& map, const std::string& what) {
                                  ", " + std::to_string(j) + "); nothing was written");
 }
 
+// The model a scene table selects, constructed; the log names the library it came from.
+template <class T>
+std::shared_ptr<T> make(const Scene& scene, const PluginCatalog& catalog,
+                        const std::string& table) {
+  const SlotTable& st = scene.slot(table);
+  log_info(table + ": " + st.plugin + " from " + st.model->library->path);
+  return catalog.create<T>(*st.model, st.params);
+}
 }  // namespace
 
 Prepared prepare(const Scene& scene, const PluginCatalog& catalog) {
   Prepared out;
-  const auto& t = scene.slot("tool");
-  const auto& w = scene.slot("workpiece");
-  const auto& e = scene.slot("evaluator");
-  out.tool = catalog.create<ToolGeometry>(*t.model, t.params);
-  out.surface = catalog.create<SurfaceShape>(*w.model, w.params);
-  out.evaluator = catalog.create<TopographyEvaluator>(*e.model, e.params);
-  for (const auto* st : {&t, &w, &e})
-    log_info(st->table + ": " + st->plugin + " from " + st->model->library->path);
-  if (scene.enabled("force")) {
-    const auto& f = scene.slot("force");
-    out.force = catalog.create<ForceModel>(*f.model, f.params);
-    log_info("force: " + f.plugin + " from " + f.model->library->path);
-  }
-  if (scene.enabled("vibration")) {
-    const auto& v = scene.slot("vibration");
-    out.dynamics = catalog.create<DynamicsModel>(*v.model, v.params);
-    log_info("vibration: " + v.plugin + " from " + v.model->library->path);
-  }
-  for (const std::string name : {"deflection", "springback"}) {
-    if (!scene.enabled(name)) continue;
-    const auto& d = scene.slot(name);
-    out.deformations.emplace_back(name, catalog.create<Deformation>(*d.model, d.params));
-    log_info(name + ": " + d.plugin + " from " + d.model->library->path);
-  }
+  out.tool = make<ToolGeometry>(scene, catalog, "tool");
+  out.surface = make<SurfaceShape>(scene, catalog, "workpiece");
+  out.evaluator = make<TopographyEvaluator>(scene, catalog, "evaluator");
+  if (scene.enabled("force")) out.force = make<ForceModel>(scene, catalog, "force");
+  if (scene.enabled("vibration")) out.dynamics = make<DynamicsModel>(scene, catalog, "vibration");
+  for (const std::string name : {"deflection", "springback"})
+    if (scene.enabled(name))
+      out.deformations.emplace_back(name, make<Deformation>(scene, catalog, name));
   out.layout = make_layout(scene, *out.tool, out.surface);
   return out;
 }
