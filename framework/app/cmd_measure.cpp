@@ -47,11 +47,7 @@ int cmd_measure(const Args& args) {
   const Grid& g = s.map.grid;
   if (json) {
     toml::table params;
-    for (const auto& [name, v] : r.named()) {
-      const bool height =
-          name == "Sa" || name == "Sq" || name == "Sp" || name == "Sv" || name == "Sz";
-      params.insert(name, height ? v * 1e3 : v);
-    }
+    for (const auto& [name, v] : r.reported_um()) params.insert(name, v);
     toml::table root{{"file", file},
                      {"nx", static_cast<std::int64_t>(g.nx)},
                      {"ny", static_cast<std::int64_t>(g.ny)},

@@ -11,6 +11,12 @@ std::map<std::string, double> Roughness::named() const {
           {"Ssk", Ssk}, {"Sku", Sku}, {"Sdq", Sdq}, {"Sdr", Sdr}};
 }
 
+std::map<std::string, double> Roughness::reported_um() const {
+  auto out = named();
+  for (const char* height : {"Sa", "Sq", "Sp", "Sv", "Sz"}) out[height] *= 1e3;
+  return out;
+}
+
 namespace {
 // Area of triangle abc less its projected area `flat`, without the cancellation of A - flat for
 // nearly flat triangles: (A^2 - flat^2) / (A + flat).

@@ -19,6 +19,8 @@ namespace topomill {
 struct Roughness {
   double mean = 0, Sa = 0, Sq = 0, Sp = 0, Sv = 0, Sz = 0, Ssk = 0, Sku = 0, Sdq = 0, Sdr = 0;
   std::map<std::string, double> named() const;
+  // As reported (summary.json, measure --json): heights in um from a map in mm, the rest as is.
+  std::map<std::string, double> reported_um() const;
 };
 
 // `valid` (one per node, 1 = valid) restricts every sum to the valid nodes: slopes to pairs of

@@ -47,13 +47,14 @@ class ToothPassage : public TopographyEvaluator {
   void evaluate(const EvaluationRequest& rq, HeightMap& map, WorkCounts& counts) const override {
     const Grid& g = map.grid;
     const unsigned threads = std::max(1u, std::min<unsigned>(rq.threads, 64));
-    std::vector<std::uint64_t> passages(threads, 0), updates(threads, 0);
+    std::vector<Scratch> scratch(threads);
+    std::vector<std::uint64_t> updates(threads, 0);
     // Rows are independent: any split gives the same bits.
     auto work = [&](unsigned w) {
       for (std::size_t j = w; j < g.ny; j += threads) {
         for (std::size_t i = 0; i < g.nx; ++i) {
           double& z = map.at(i, j);
-          const double low = node_height(rq, g.x(i), g.y(j), passages[w]);
+          const double low = node_height(rq, g.x(i), g.y(j), scratch[w]);
           if (low < z) z = low, ++updates[w];
         }
         if (w == 0 && rq.progress) rq.progress(static_cast<double>(j) / g.ny);
@@ -64,23 +65,30 @@ class ToothPassage : public TopographyEvaluator {
     work(0);
     for (auto& t : pool) t.join();
     std::uint64_t total_p = 0, total_u = 0;
-    for (unsigned w = 0; w < threads; ++w) total_p += passages[w], total_u += updates[w];
+    for (unsigned w = 0; w < threads; ++w) total_p += scratch[w].visited, total_u += updates[w];
     counts["nodes"] = g.size();
     counts["tooth_passages"] = total_p;
     counts["updates"] = total_u;
   }
 
  private:
+  // Per-worker buffers and counts, so that the per-node work allocates nothing.
+  struct Scratch {
+    std::vector<std::pair<double, std::size_t>> order;  // (distance across, pass)
+    std::vector<double> roots;                          // crossing times in one window
+    std::uint64_t visited = 0;                          // tooth passages evaluated
+  };
+
   // The lowest edge height over (x, y) across all passes; +inf when no edge passes over it.
   // Passes are taken nearest first; one whose ball never dips below the best height so far (its
   // envelope's minimum) cannot lower the node and is skipped without solving for passages.
-  double node_height(const EvaluationRequest& rq, double x, double y,
-                     std::uint64_t& visited) const {
+  double node_height(const EvaluationRequest& rq, double x, double y, Scratch& scratch) const {
     const ToolPath& path = *rq.path;
     const double R = rq.tool->radius();
     const double reach = R + path.max_correction();
     const bool along_y = path.feed_axis() == ToolPath::FeedAxis::Y;
-    std::vector<std::pair<double, std::size_t>> order;
+    auto& order = scratch.order;
+    order.clear();
     for (std::size_t p = 0; p < path.passes(); ++p) {
       const Vec3 c0 = path.nominal_centre(p, 0.0);
       const double across = along_y ? std::abs(x - c0.x()) : std::abs(y - c0.y());
@@ -102,14 +110,14 @@ class ToothPassage : public TopographyEvaluator {
         t0 = t1, f0 = f1, t1 = std::clamp(t2, 0.0, tl), f1 = along(t1);
         if (std::abs(f1) < 1e-12) break;
       }
-      best = std::min(best, pass_minimum(rq, p, x, y, t1, best, visited));
+      best = std::min(best, pass_minimum(rq, p, x, y, t1, best, scratch));
     }
     return best;
   }
 
   // Visits tooth passages outwards from the one nearest t0 until heights rise on both sides.
   double pass_minimum(const EvaluationRequest& rq, std::size_t p, double x, double y, double t0,
-                      double best_so_far, std::uint64_t& visited) const {
+                      double best_so_far, Scratch& scratch) const {
     const ToolPath& path = *rq.path;
     const ToolGeometry& tool = *rq.tool;
     const double R = tool.radius(), omega = path.spindle_rate(), tip = tool.min_polar_angle();
@@ -180,7 +188,7 @@ class ToothPassage : public TopographyEvaluator {
     // (skipping the jumps of its wrap at +-pi) and each bracket bisected.
     const double rev = kTwoPi / std::abs(omega);
     const double near_axis = 10 * path.feed_speed() / std::abs(omega);
-    std::vector<double> roots;
+    auto& roots = scratch.roots;
     auto passages_near = [&](int tooth, double guess) {
       roots.clear();
       const double t = crossing(tooth, guess);
@@ -223,7 +231,7 @@ class ToothPassage : public TopographyEvaluator {
           for (double t : roots) {
             if (t < 0 || t > t_end) continue;
             const Probe q = probe(tooth, t);
-            ++visited;
+            ++scratch.visited;
             if (!std::isfinite(q.height)) continue;
             if (q.over) best = std::min(best, q.height);
             lowest = std::min(lowest, q.height);

@@ -76,16 +76,6 @@ TEST_CASE("x3p-2.x3p gives the agreed reference values", "[metrology][refdata]")
   CHECK(r.Sdr == Approx(0.1920252626).epsilon(1e-9));  // two triangles per cell: see roughness.hpp
 }
 
-TEST_CASE("sdf-1.sdf is read and measured to the reference values", "[metrology][refdata]") {
-  const Surface s = read_sdf(refdata("surfacetopography/sdf-1.sdf"));
-  REQUIRE(s.map.grid.nx == 7);
-  REQUIRE(s.map.grid.ny == 4);
-  const Roughness r = roughness(s.map);
-  CHECK(r.Sa * 1e-3 == Approx(1.15801275510204e-08).epsilon(1e-9));
-  CHECK(r.Sku == Approx(2.57727307520472).epsilon(1e-9));
-  CHECK(r.Sdq == Approx(0.0171224878773825).epsilon(1e-9));
-}
-
 TEST_CASE("the openGPS samples: validity bits, integer scaling, XML and binary alike",
           "[metrology]") {
   const Surface xml = read_x3p(refdata("opengps_samples/ISO5436-sample1.x3p"));

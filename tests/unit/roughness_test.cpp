@@ -2,53 +2,26 @@
 // independent implementations (../shared/refdata/README.md).
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <fstream>
-#include <sstream>
+#include <filesystem>
 
+#include "io/sdf.hpp"
 #include "roughness.hpp"
 
 using topomill::Grid;
 using topomill::HeightMap;
 
-namespace {
-// The ASCII ISO 25178-71 example: the header's scales, then the points between the first two '*'.
-HeightMap read_sdf_ascii(const std::string& path) {
-  std::ifstream in(path);
-  REQUIRE(in);
-  std::string line;
-  double xs = 0, ys = 0, zs = 0;
-  std::size_t nx = 0, ny = 0;
-  while (std::getline(in, line) && line != "*") {
-    std::istringstream kv(line);
-    std::string key, eq;
-    double v = 0;
-    if (!(kv >> key >> eq >> v)) continue;
-    if (key == "NumPoints") nx = static_cast<std::size_t>(v);
-    if (key == "NumProfiles") ny = static_cast<std::size_t>(v);
-    if (key == "Xscale") xs = v;
-    if (key == "Yscale") ys = v;
-    if (key == "Zscale") zs = v;
-  }
-  Grid g;
-  g.nx = nx, g.ny = ny, g.dx = xs, g.dy = ys;
-  HeightMap m(g);
-  for (double& z : m.z) {
-    in >> z;
-    z *= zs;
-  }
-  REQUIRE(in);
-  return m;
-}
-}  // namespace
-
 TEST_CASE("sdf-1.sdf gives the agreed reference values", "[roughness][refdata]") {
-  const auto m = read_sdf_ascii(std::string(TOPOMILL_REFDATA_DIR) + "/surfacetopography/sdf-1.sdf");
-  const auto r = topomill::roughness(m);
-  CHECK(r.Sa == Approx(1.15801275510204e-08).epsilon(1e-9));
-  CHECK(r.Sq == Approx(1.36028972894883e-08).epsilon(1e-9));
-  CHECK(r.Sp == Approx(1.64367857142856e-08).epsilon(1e-9));
-  CHECK(r.Sv == Approx(3.44932142857144e-08).epsilon(1e-9));
-  CHECK(r.Sz == Approx(5.093e-08).epsilon(1e-9));
+  const std::string path = std::string(TOPOMILL_REFDATA_DIR) + "/surfacetopography/sdf-1.sdf";
+  REQUIRE(std::filesystem::exists(path));
+  const topomill::Surface s = topomill::read_sdf(path);
+  REQUIRE(s.map.grid.nx == 7);
+  REQUIRE(s.map.grid.ny == 4);
+  const auto r = topomill::roughness(s.map);  // mm; the reference is in metres
+  CHECK(r.Sa * 1e-3 == Approx(1.15801275510204e-08).epsilon(1e-9));
+  CHECK(r.Sq * 1e-3 == Approx(1.36028972894883e-08).epsilon(1e-9));
+  CHECK(r.Sp * 1e-3 == Approx(1.64367857142856e-08).epsilon(1e-9));
+  CHECK(r.Sv * 1e-3 == Approx(3.44932142857144e-08).epsilon(1e-9));
+  CHECK(r.Sz * 1e-3 == Approx(5.093e-08).epsilon(1e-9));
   CHECK(r.Ssk == Approx(-0.64304606303356).epsilon(1e-9));
   CHECK(r.Sku == Approx(2.57727307520472).epsilon(1e-9));
   CHECK(r.Sdq == Approx(0.0171224878773825).epsilon(1e-9));

@@ -33,11 +33,7 @@ toml::table grid_table(const Grid& g) {
 // Roughness in micrometres (heights), dimensionless (Ssk, Sku, Sdq) and percent (Sdr).
 toml::table roughness_table(const Roughness& r) {
   toml::table t;
-  for (const auto& [name, v] : r.named()) {
-    const bool height =
-        name == "Sa" || name == "Sq" || name == "Sp" || name == "Sv" || name == "Sz";
-    t.insert(name, height ? v * 1e3 : v);
-  }
+  for (const auto& [name, v] : r.reported_um()) t.insert(name, v);
   return t;
 }
 
