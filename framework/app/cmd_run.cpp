@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cli.hpp"
+#include "interrupt.hpp"
 #include "commands.hpp"
 #include "io/run_outputs.hpp"
 #include "log.hpp"
@@ -49,6 +50,7 @@ int cmd_run(const Args& args) {
     };
   RunResult result = run_pipeline(scene, *loaded.catalog, options);
   if (tty) std::fprintf(stderr, "\r%*s\r", 20, "");
+  throw_if_interrupted();
 
   RunSummary summary = write_run_outputs(scene, result, out_dir, started);
   std::cout << summary.text;

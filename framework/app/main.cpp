@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "interrupt.hpp"
 #include "topomill/error.hpp"
 #include "topomill/version.hpp"
 
@@ -26,7 +27,7 @@ void usage(std::ostream& os) {
   for (const auto& c : kCommands)
     os << "  " << c.name << std::string(10 - std::string(c.name).size(), ' ') << c.summary << "\n";
   os << "\n'topomill COMMAND --help' shows a command's options.\n"
-        "exit codes: 0 ok, 1 internal failure, 2 bad input (scene, option, file)\n";
+        "exit codes: 0 ok, 1 internal failure, 2 bad input (scene, option, file), 130 interrupted\n";
 }
 
 }  // namespace
@@ -46,6 +47,7 @@ int main(int argc, char** argv) {
               << ")\n";
     return 0;
   }
+  topomill::install_interrupt_handler();
   for (const auto& c : kCommands) {
     if (name != c.name) continue;
     try {
@@ -53,6 +55,9 @@ int main(int argc, char** argv) {
     } catch (const topomill::InputError& e) {
       std::cerr << e.what() << "\n";
       return 2;
+    } catch (const topomill::Interrupted& e) {
+      std::cerr << e.what() << "\n";
+      return 130;  // the shell's convention for a SIGINT
     } catch (const topomill::PluginError& e) {
       std::cerr << "error: " << e.what() << "\n";
       return 1;

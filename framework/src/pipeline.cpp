@@ -4,7 +4,9 @@
 #include <cmath>
 
 #include "form_removal.hpp"
+#include "interrupt.hpp"
 #include "log.hpp"
+#include "resources.hpp"
 #include "topomill/surface_shape.hpp"
 #include "topomill/tool_geometry.hpp"
 
@@ -53,7 +55,7 @@ std::shared_ptr<T> make(const Scene& scene, const PluginCatalog& catalog,
 }
 }  // namespace
 
-Prepared prepare(const Scene& scene, const PluginCatalog& catalog) {
+Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned threads) {
   Prepared out;
   out.tool = make<ToolGeometry>(scene, catalog, "tool");
   out.surface = make<SurfaceShape>(scene, catalog, "workpiece");
@@ -64,6 +66,7 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog) {
     if (scene.enabled(name))
       out.deformations.emplace_back(name, make<Deformation>(scene, catalog, name));
   out.layout = make_layout(scene, *out.tool, out.surface);
+  check_memory(scene, out, threads, available_memory());
   return out;
 }
 
@@ -114,15 +117,14 @@ static void apply_effects(const Scene& scene, const Prepared& m, StageClock& clo
   const Layout& L = m.layout;
   ToolPath& path = *L.path;
   const Params& cut = scene.table("cutting");
-  const double tooth_period = 2 * M_PI / std::abs(path.spindle_rate()) / m.tool->teeth();
-  double dt = tooth_period / 64;  // resolves the force's variation over a tooth passage
-  if (m.dynamics) dt = std::min(dt, m.dynamics->suggested_step());
+  const double dt = effect_time_step(m);
   result.dynamics_step = dt;
 
   std::vector<std::vector<CutState>> states(path.passes());
   std::vector<std::vector<CuttingForce>> forces(path.passes());
   clock.run("force", [&] {
     for (std::size_t p = 0; p < path.passes(); ++p) {
+      throw_if_interrupted();
       const auto n = static_cast<std::size_t>(std::ceil(path.pass(p).t_end / dt)) + 1;
       for (std::size_t k = 0; k < n; ++k) {
         CutState st;
@@ -200,8 +202,10 @@ RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog,
   RunResult result;
   StageClock clock(result.stages);
 
-  Prepared m = clock.run("setup", [&] { return prepare(scene, catalog); });
+  Prepared m = clock.run("setup", [&] { return prepare(scene, catalog, options.threads); });
+  throw_if_interrupted();
   if (m.force) apply_effects(scene, m, clock, result);
+  throw_if_interrupted();
   result.layout = m.layout;
   const Layout& L = result.layout;
   log_info("grid " + std::to_string(L.grid.nx) + " x " + std::to_string(L.grid.ny) + " nodes, " +
@@ -220,7 +224,9 @@ RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog,
     rq.lambda_max = L.lambda_max;
     rq.threads = options.threads;
     if (options.progress) rq.progress = [&](double f) { options.progress("evaluate", f); };
+    rq.stop = &stop_flag();
     m.evaluator->evaluate(rq, map, result.work);
+    throw_if_interrupted();  // the map of an interrupted evaluation is incomplete
     return map;
   });
   require_finite(result.raw, "the evaluator's height map");

@@ -56,11 +56,12 @@ struct Prepared {
   Layout layout;
 };
 
-// Throws InputError for scenes the model cannot represent.
-Prepared prepare(const Scene& scene, const PluginCatalog& catalog);
+// Throws InputError for scenes the model cannot represent, or that would not fit in memory with
+// `threads` evaluator threads.
+Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned threads = 1);
 
 // Throws InputError for scenes the model cannot represent, std::runtime_error if a stage produces
-// a non-finite value.
+// a non-finite value, Interrupted after SIGINT.
 RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog, const RunOptions& options);
 
 }  // namespace topomill

@@ -51,7 +51,7 @@ class ToothPassage : public TopographyEvaluator {
     std::vector<std::uint64_t> updates(threads, 0);
     // Rows are independent: any split gives the same bits.
     auto work = [&](unsigned w) {
-      for (std::size_t j = w; j < g.ny; j += threads) {
+      for (std::size_t j = w; j < g.ny && !rq.stopped(); j += threads) {
         for (std::size_t i = 0; i < g.nx; ++i) {
           double& z = map.at(i, j);
           const double low = node_height(rq, g.x(i), g.y(j), scratch[w]);

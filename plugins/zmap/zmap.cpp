@@ -37,6 +37,25 @@ class ZMap : public TopographyEvaluator {
     return s;
   }
 
+  // Eq. 46: an edge point moves less than one cell per step.
+  double time_step(const EvaluationRequest& rq, const Grid& g) const {
+    if (time_step_ > 0) return time_step_;
+    const double cell = std::min(g.dx, g.dy);
+    const double omega = std::abs(rq.path->spindle_rate());
+    const double phi_max_all = std::min(M_PI / 2, rq.lambda_max + margin_ * rq.kappa);
+    return time_fraction_ * cell / (omega * rq.tool->radius() * std::max(std::sin(phi_max_all), 1e-12));
+  }
+
+  // One map per thread, and the table of (pass, time) steps.
+  std::uint64_t extra_memory(const EvaluationRequest& rq, const Grid& g) const override {
+    const double dt = time_step(rq, g);
+    double steps = 0;
+    for (std::size_t p = 0; p < rq.path->passes(); ++p) steps += rq.path->pass(p).t_end / dt + 1;
+    const double threads = std::max(1u, std::min<unsigned>(rq.threads, 64));
+    return static_cast<std::uint64_t>(
+        std::min(1e19, threads * static_cast<double>(g.nx) * static_cast<double>(g.ny) * 8 + steps * 16));
+  }
+
   explicit ZMap(const Params& p)
       : margin_(p.number("catw_margin")),
         time_step_(p.number("time_step")),
@@ -49,12 +68,7 @@ class ZMap : public TopographyEvaluator {
     const Grid& g = map.grid;
     const double R = tool.radius();
     const double cell = std::min(g.dx, g.dy);
-    const double omega = std::abs(path.spindle_rate());
-    const double phi_max_all = std::min(M_PI / 2, rq.lambda_max + margin_ * rq.kappa);
-    // Eq. 46: an edge point moves less than one cell per step.
-    const double dt = time_step_ > 0 ? time_step_
-                                     : time_fraction_ * cell /
-                                           (omega * R * std::max(std::sin(phi_max_all), 1e-12));
+    const double dt = time_step(rq, g);
     const double dw = edge_fraction_ * cell;
 
     struct Step {
@@ -75,7 +89,7 @@ class ZMap : public TopographyEvaluator {
       std::vector<double> ring, depth, lag;  // per edge point: R sin(alpha), -R cos(alpha), Psi
       const double tip = tool.min_polar_angle();
       const std::size_t begin = steps.size() * w / threads, end = steps.size() * (w + 1) / threads;
-      for (std::size_t s = begin; s < end; ++s) {
+      for (std::size_t s = begin; s < end && !rq.stopped(); ++s) {
         const auto [p, t] = steps[s];
         const Vec3 centre = path.centre(p, t);
         const double spindle = path.spindle_angle(p, t);

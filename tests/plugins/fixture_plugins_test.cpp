@@ -1,4 +1,5 @@
 // Deliberately broken plugins are refused with precise messages, and the program goes on.
+#include "topomill/version.hpp"
 #include <catch2/catch.hpp>
 #include <fstream>
 
@@ -60,7 +61,8 @@ TEST_CASE("the ABI handshake refuses a plugin built for another ABI, naming both
   CHECK(r.exit_code == 0);
   CHECK(contains(r.out, fixture_dir("wrong_abi") +
                             "/libtopomill_fixture_wrong_abi.so: built for "
-                            "topomill plugin ABI 999, this program provides ABI 1"));
+                            "topomill plugin ABI 999, this program provides ABI " +
+                            std::to_string(topomill::kAbiVersion)));
   // Asked for by name, the refusal is the error.
   const auto scene =
       scene_with_workpiece("wrong_abi", "fixture_wrong_abi", fixture_dir("wrong_abi"));

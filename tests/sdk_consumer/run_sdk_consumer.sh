@@ -37,6 +37,7 @@ TOPOMILL_PLUGIN_PATH="$work/template" "$topomill" run "$scene" -q --out "$work/o
   || fail "run with TOPOMILL_PLUGIN_PATH"
 
 # The same plugin built for another ABI is refused, with the library and both versions.
+abi=$("$topomill" --version | sed -n 's/.*plugin ABI \([0-9]*\).*/\1/p')
 cmake -S "$src/sdk/template" -B "$work/template_abi" "${gen[@]}" -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$prefix" -DBUILD_TESTING=OFF "${flags[@]}" \
   -DCMAKE_CXX_FLAGS="$extra -DTOPOMILL_PLUGIN_ABI=999u" >/dev/null
@@ -46,6 +47,6 @@ err=$("$topomill" run "$scene" -q --plugin-path "$work/template_abi" --out "$wor
 code=$?
 set -e
 [ $code -eq 2 ] || fail "ABI mismatch: exit $code, expected 2"
-echo "$err" | grep -q "libtopomill_ball_end_worn.so' built for topomill plugin ABI 999, this program provides ABI 1" \
+echo "$err" | grep -q "libtopomill_ball_end_worn.so' built for topomill plugin ABI 999, this program provides ABI $abi" \
   || fail "ABI mismatch message: $err"
 echo "sdk consumer: ok"

@@ -1,6 +1,7 @@
 // Slot: the height map swept by the cutting edges along the (corrected) tool path (Sec. 4).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -25,6 +26,9 @@ struct EvaluationRequest {
   unsigned threads = 1;
   // Called now and then with the finished fraction in [0, 1]; may be empty.
   std::function<void(double)> progress;
+  // Set when the user interrupts the run: return early (the map is then discarded). May be null.
+  const std::atomic<bool>* stop = nullptr;
+  bool stopped() const { return stop && stop->load(std::memory_order_relaxed); }
 };
 
 // Work done, reported in summary.json ("time_steps", "edge_points", "updates", ...).
@@ -36,6 +40,13 @@ class TOPOMILL_API TopographyEvaluator : public Model {
   // The result must not depend on `threads` or on the order of updates.
   virtual void evaluate(const EvaluationRequest& request, HeightMap& map,
                         WorkCounts& counts) const = 0;
+
+  // Bytes evaluate() will allocate beyond `map` itself for this request (per-thread maps, time
+  // tables), so that a scene too large for memory is refused before any work.
+  virtual std::uint64_t extra_memory(const EvaluationRequest& request, const Grid& grid) const {
+    (void)request, (void)grid;
+    return 0;
+  }
 };
 
 template <>

@@ -47,15 +47,21 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
   if (ec)
     throw InputError(SourceRef{"command line"}, "--out",
                      "cannot create the output directory '" + out_dir + "': " + ec.message());
-  // A previous summary would vouch for files this run is about to replace: remove it first.
-  fs::remove(fs::path(out_dir) / "summary.json", ec);
+  // Files are written into a hidden staging directory and moved in only when all are whole, so
+  // a killed run leaves its pieces there (removed by the next run), never beside summary.json.
+  const fs::path staging = fs::path(out_dir) / ".incomplete";
+  fs::remove_all(staging, ec);
+  fs::create_directories(staging, ec);
+  if (ec)
+    throw InputError(SourceRef{"command line"}, "--out",
+                     "cannot write into the output directory '" + out_dir + "': " + ec.message());
 
   const auto t0 = std::chrono::steady_clock::now();
   const bool unrolled = scene.table("analysis").string("form") != "none";
   std::vector<std::string> files;
   auto path = [&](const std::string& name) {
     files.push_back(name);
-    return (fs::path(out_dir) / name).string();
+    return (staging / name).string();
   };
   for (const auto& format : scene.table("output").strings("formats")) {
     if (format == "csv") {
@@ -79,6 +85,10 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
       write_png_heatmap(path("height_residual.png"), result.residual, labels);
     }
   }
+  // A previous summary would vouch for files about to be replaced: remove it before the moves.
+  fs::remove(fs::path(out_dir) / "summary.json", ec);
+  for (const auto& f : files) fs::rename(staging / f, fs::path(out_dir) / f);
+  fs::remove(staging, ec);
   const double write_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 

@@ -1,0 +1,37 @@
+// Memory a run will need, estimated before any work, against what the machine has: a scene that
+// would not fit is refused with the estimate and the key to turn, instead of swapping or being
+// killed halfway.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "pipeline.hpp"
+
+namespace topomill {
+
+// Bytes this process may still allocate: MemAvailable, capped by RLIMIT_AS / RLIMIT_DATA, or
+// TOPOMILL_MEMORY_LIMIT (bytes, or with a K/M/G suffix) when set.
+std::uint64_t available_memory();
+
+// Samples on the force/dynamics time grid over all passes (0 when no effect is enabled).
+std::uint64_t effect_samples(const Prepared& m);
+
+// The force/dynamics time step, s: 1/64 of a tooth period, or the dynamics' own step if smaller.
+double effect_time_step(const Prepared& m);
+
+struct MemoryEstimate {
+  std::uint64_t grid_bytes = 0;    // height maps, outputs and the evaluator's own buffers
+  std::uint64_t effect_bytes = 0;  // cut states, forces and corrections on the time grid
+  std::uint64_t total() const { return grid_bytes + effect_bytes; }
+};
+
+MemoryEstimate estimate_memory(const Prepared& m, unsigned threads);
+
+// Throws InputError naming the key that dominates the estimate when it exceeds `available`.
+void check_memory(const Scene& scene, const Prepared& m, unsigned threads,
+                  std::uint64_t available);
+
+std::string format_bytes(double bytes);
+
+}  // namespace topomill
