@@ -6,8 +6,8 @@
 #include <iostream>
 
 #include "cli.hpp"
-#include "interrupt.hpp"
 #include "commands.hpp"
+#include "interrupt.hpp"
 #include "io/run_outputs.hpp"
 #include "log.hpp"
 #include "pipeline.hpp"

@@ -27,7 +27,8 @@ void usage(std::ostream& os) {
   for (const auto& c : kCommands)
     os << "  " << c.name << std::string(10 - std::string(c.name).size(), ' ') << c.summary << "\n";
   os << "\n'topomill COMMAND --help' shows a command's options.\n"
-        "exit codes: 0 ok, 1 internal failure, 2 bad input (scene, option, file), 130 interrupted\n";
+        "exit codes: 0 ok, 1 internal failure, 2 bad input (scene, option, file), 130 "
+        "interrupted\n";
 }
 
 }  // namespace

@@ -24,8 +24,12 @@ void install_interrupt_handler() {
   sigaction(SIGINT, &sa, nullptr);
 }
 
-const std::atomic<bool>& stop_flag() { return g_stop; }
-void request_stop() { g_stop.store(true); }
+const std::atomic<bool>& stop_flag() {
+  return g_stop;
+}
+void request_stop() {
+  g_stop.store(true);
+}
 
 void throw_if_interrupted() {
   if (g_stop.load()) throw Interrupted();

@@ -20,17 +20,22 @@ namespace {
 constexpr std::uint64_t kCoreBytesPerNode = 40;
 // One sample of the force/dynamics time grid: its cut state (with the material test's closure on
 // the heap), its force, the dynamics' input and output, and the correction.
-constexpr std::uint64_t kBytesPerSample = sizeof(CutState) + sizeof(CuttingForce) + 3 * sizeof(Vec3) + 128;
+constexpr std::uint64_t kBytesPerSample =
+    sizeof(CutState) + sizeof(CuttingForce) + 3 * sizeof(Vec3) + 128;
 
 std::uint64_t parse_bytes(const std::string& text) {
   std::size_t end = 0;
   const double v = std::stod(text, &end);
   double scale = 1;
   const std::string suffix = text.substr(end);
-  if (suffix == "K" || suffix == "k") scale = 1024.0;
-  else if (suffix == "M") scale = 1024.0 * 1024;
-  else if (suffix == "G") scale = 1024.0 * 1024 * 1024;
-  else if (!suffix.empty()) throw std::invalid_argument(suffix);
+  if (suffix == "K" || suffix == "k")
+    scale = 1024.0;
+  else if (suffix == "M")
+    scale = 1024.0 * 1024;
+  else if (suffix == "G")
+    scale = 1024.0 * 1024 * 1024;
+  else if (!suffix.empty())
+    throw std::invalid_argument(suffix);
   if (!(v > 0)) throw std::invalid_argument(text);
   return static_cast<std::uint64_t>(v * scale);
 }
@@ -90,7 +95,8 @@ MemoryEstimate estimate_memory(const Prepared& m, unsigned threads) {
   rq.lambda_max = m.layout.lambda_max;
   rq.threads = threads;
   const double nodes = static_cast<double>(g.nx) * static_cast<double>(g.ny);
-  const double grid = nodes * kCoreBytesPerNode + static_cast<double>(m.evaluator->extra_memory(rq, g));
+  const double grid =
+      nodes * kCoreBytesPerNode + static_cast<double>(m.evaluator->extra_memory(rq, g));
   const double effects = static_cast<double>(effect_samples(m)) * kBytesPerSample;
   constexpr double cap = 1e19;  // keeps absurd scenes (1e12 nodes) from overflowing
   e.grid_bytes = static_cast<std::uint64_t>(std::min(grid, cap));
@@ -101,8 +107,10 @@ MemoryEstimate estimate_memory(const Prepared& m, unsigned threads) {
 std::string format_bytes(double bytes) {
   std::ostringstream os;
   os.precision(3);
-  if (bytes >= 1024.0 * 1024 * 1024) os << bytes / (1024.0 * 1024 * 1024) << " GiB";
-  else os << bytes / (1024.0 * 1024) << " MiB";
+  if (bytes >= 1024.0 * 1024 * 1024)
+    os << bytes / (1024.0 * 1024 * 1024) << " GiB";
+  else
+    os << bytes / (1024.0 * 1024) << " MiB";
   return os.str();
 }
 
@@ -113,11 +121,11 @@ void check_memory(const Scene& scene, const Prepared& m, unsigned threads,
   if (static_cast<double>(e.total()) <= 0.9 * static_cast<double>(available)) return;
   const Grid& g = m.layout.grid;
   std::ostringstream os;
-  os << "the run would need about " << format_bytes(static_cast<double>(e.total())) << " ("
-     << g.nx << " x " << g.ny << " nodes: " << format_bytes(static_cast<double>(e.grid_bytes))
-     << "; " << effect_samples(m) << " force/dynamics samples: "
-     << format_bytes(static_cast<double>(e.effect_bytes)) << "), and "
-     << format_bytes(static_cast<double>(available)) << " are available: ";
+  os << "the run would need about " << format_bytes(static_cast<double>(e.total())) << " (" << g.nx
+     << " x " << g.ny << " nodes: " << format_bytes(static_cast<double>(e.grid_bytes)) << "; "
+     << effect_samples(m)
+     << " force/dynamics samples: " << format_bytes(static_cast<double>(e.effect_bytes))
+     << "), and " << format_bytes(static_cast<double>(available)) << " are available: ";
   if (e.grid_bytes >= e.effect_bytes) {
     os << "raise region.spacing (memory grows as 1/spacing^2) or shrink region.size";
     if (threads > 1) os << ", or use fewer --threads";

@@ -29,8 +29,7 @@ struct MemoryEstimate {
 MemoryEstimate estimate_memory(const Prepared& m, unsigned threads);
 
 // Throws InputError naming the key that dominates the estimate when it exceeds `available`.
-void check_memory(const Scene& scene, const Prepared& m, unsigned threads,
-                  std::uint64_t available);
+void check_memory(const Scene& scene, const Prepared& m, unsigned threads, std::uint64_t available);
 
 std::string format_bytes(double bytes);
 

@@ -43,7 +43,8 @@ class ZMap : public TopographyEvaluator {
     const double cell = std::min(g.dx, g.dy);
     const double omega = std::abs(rq.path->spindle_rate());
     const double phi_max_all = std::min(M_PI / 2, rq.lambda_max + margin_ * rq.kappa);
-    return time_fraction_ * cell / (omega * rq.tool->radius() * std::max(std::sin(phi_max_all), 1e-12));
+    return time_fraction_ * cell /
+           (omega * rq.tool->radius() * std::max(std::sin(phi_max_all), 1e-12));
   }
 
   // One map per thread, and the table of (pass, time) steps.
@@ -52,8 +53,8 @@ class ZMap : public TopographyEvaluator {
     double steps = 0;
     for (std::size_t p = 0; p < rq.path->passes(); ++p) steps += rq.path->pass(p).t_end / dt + 1;
     const double threads = std::max(1u, std::min<unsigned>(rq.threads, 64));
-    return static_cast<std::uint64_t>(
-        std::min(1e19, threads * static_cast<double>(g.nx) * static_cast<double>(g.ny) * 8 + steps * 16));
+    return static_cast<std::uint64_t>(std::min(
+        1e19, threads * static_cast<double>(g.nx) * static_cast<double>(g.ny) * 8 + steps * 16));
   }
 
   explicit ZMap(const Params& p)

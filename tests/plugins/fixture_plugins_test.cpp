@@ -1,7 +1,7 @@
 // Deliberately broken plugins are refused with precise messages, and the program goes on.
-#include "topomill/version.hpp"
 #include <catch2/catch.hpp>
 #include <fstream>
+#include "topomill/version.hpp"
 
 #include "support/run_command.hpp"
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace testing {
 
@@ -14,6 +15,12 @@ struct CommandResult {
 // `args` is appended to the program path as shell words; runs in the source directory.
 // `env` (e.g. "TOPOMILL_PLUGIN_PATH=/x") is prefixed to the command when not empty.
 CommandResult run_topomill(const std::string& args, const std::string& env = "");
+
+// Starts the program without a shell (so that signals reach it, not a shell), in the source
+// directory, with stdout and stderr to `log`. Returns its pid.
+int spawn_topomill(const std::vector<std::string>& args, const std::string& log);
+// Waits for a spawned program; returns its raw wait status.
+int wait_for(int pid);
 
 std::string source_dir();
 std::string fixture_dir(const std::string& name);

@@ -1,0 +1,116 @@
+// Outputs are whole or absent (issue #9): real runs are killed (SIGKILL) at moments spread over
+// their whole duration, writing included, and interrupted (SIGINT) while they compute. Whatever
+// is left must read whole, summary.json must only ever vouch for whole files, and a rerun into the
+// same directory must succeed.
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <filesystem>
+#include <regex>
+#include <thread>
+
+#include "metrology/read_surface.hpp"
+#include "support/run_command.hpp"
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+// Every visible file reads whole; those summary.json lists exist.
+void check_whole(const std::string& dir) {
+  if (!fs::exists(dir)) return;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name.front() == '.' || !e.is_regular_file()) continue;  // .incomplete/: unsealed pieces
+    INFO(e.path());
+    const std::string ext = e.path().extension().string();
+    CHECK(fs::file_size(e.path()) > 0);
+    if (ext == ".csv" || ext == ".gsf" || ext == ".x3p" || ext == ".sdf")
+      CHECK_NOTHROW(topomill::read_surface(e.path().string(), 0.002));
+    else if (ext == ".vts")
+      CHECK(testing::read_file(e.path().string()).find("</VTKFile>") != std::string::npos);
+    else if (ext == ".png")
+      CHECK(testing::read_file(e.path().string()).find("IEND") != std::string::npos);
+  }
+  const std::string summary = testing::read_file(dir + "/summary.json");
+  if (summary.empty()) return;
+  CHECK(summary.find("\"roughness_um\"") != std::string::npos);
+  const std::regex listed("\"(height_[a-z]+\\.[a-z3]+)\"");
+  for (std::sregex_iterator it(summary.begin(), summary.end(), listed), end; it != end; ++it)
+    CHECK(fs::exists(dir + "/" + (*it)[1].str()));
+}
+
+const std::vector<std::string> kLongWrite = {
+    "run",
+    "configs/examples/quick.toml",
+    "-q",
+    "--set",
+    "evaluator.plugin=\"tooth_passage\"",
+    "--set",
+    "region.spacing=0.002",
+    "--set",
+    "output.formats=[\"csv\",\"gsf\",\"x3p\",\"sdf\",\"vts\",\"png\"]"};
+
+std::vector<std::string> with_out(std::vector<std::string> args, const std::string& out) {
+  args.push_back("--out");
+  args.push_back(out);
+  return args;
+}
+
+}  // namespace
+
+TEST_CASE("a run killed at any moment leaves only whole files, and a rerun succeeds",
+          "[stability][kill]") {
+  const std::string out = testing::temp_dir("killed");
+  const std::string log = testing::temp_dir("killed.log");
+  const auto t0 = Clock::now();
+  REQUIRE(WEXITSTATUS(testing::wait_for(testing::spawn_topomill(with_out(kLongWrite, out), log))) ==
+          0);
+  const double full = std::chrono::duration<double>(Clock::now() - t0).count();
+  check_whole(out);
+  // Moments from the start to past the end of a whole run, so that some fall in the writing.
+  constexpr int kKills = 16;
+  for (int k = 0; k < kKills; ++k) {
+    const double at = full * 1.1 * k / (kKills - 1);
+    const int pid = testing::spawn_topomill(with_out(kLongWrite, out), log);
+    REQUIRE(pid > 0);
+    std::this_thread::sleep_for(std::chrono::duration<double>(at));
+    kill(pid, SIGKILL);
+    testing::wait_for(pid);
+    INFO("killed after " << at << " s of a " << full << " s run");
+    check_whole(out);
+  }
+  const int status = testing::wait_for(testing::spawn_topomill(with_out(kLongWrite, out), log));
+  CHECK(WEXITSTATUS(status) == 0);
+  check_whole(out);
+  CHECK(fs::exists(out + "/summary.json"));
+  CHECK_FALSE(fs::exists(out + "/.incomplete"));
+}
+
+TEST_CASE("SIGINT stops a run promptly with a message and writes nothing", "[stability][kill]") {
+  // The evaluator (the reference Z-map, ~20 s) and the force stage of a scene with dynamics.
+  for (const std::string scene :
+       {"configs/paper/lambda30.toml", "configs/paper/lambda30_fz01_dynamics.toml"}) {
+    DYNAMIC_SECTION(scene) {
+      const std::string out = testing::temp_dir("interrupted");
+      const std::string log = testing::temp_dir("interrupted.log");
+      const int pid = testing::spawn_topomill({"run", scene, "-q", "--out", out}, log);
+      REQUIRE(pid > 0);
+      std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+      const auto sent = Clock::now();
+      kill(pid, SIGINT);
+      const int status = testing::wait_for(pid);
+      const double took = std::chrono::duration<double>(Clock::now() - sent).count();
+      INFO(testing::read_file(log));
+      REQUIRE(WIFEXITED(status));
+      CHECK(WEXITSTATUS(status) == 130);
+      CHECK(took < 2.0);  // a check between rows, steps and passes: not the end of a stage
+      CHECK(testing::read_file(log).find("interrupted (SIGINT)") != std::string::npos);
+      CHECK_FALSE(fs::exists(out + "/summary.json"));
+      CHECK((!fs::exists(out) || fs::is_empty(out)));
+    }
+  }
+}
