@@ -20,6 +20,8 @@ const Command kCommands[] = {
     {"plugins", topomill::cli::cmd_plugins, "list the models available, per slot"},
     {"describe", topomill::cli::cmd_describe, "show a model's parameters"},
     {"measure", topomill::cli::cmd_measure, "ISO 25178 parameters of a height-map file"},
+    {"ablate", topomill::cli::cmd_ablate, "each effect off in turn, and swapped models"},
+    {"sweep", topomill::cli::cmd_sweep, "the cross product of varied scene keys"},
 };
 
 void usage(std::ostream& os) {

@@ -166,12 +166,14 @@ static void apply_effects(const Scene& scene, const Prepared& m, StageClock& clo
   }
   if (!m.deformations.empty()) {
     clock.run("deformation", [&] {
-      for (const auto& [name, model] : m.deformations)
+      for (const auto& named : m.deformations) {
+        const Deformation& model = *named.second;  // (C++17 lambdas cannot capture a binding)
         for (std::size_t p = 0; p < path.passes(); ++p)
           for (std::size_t k = 0; k < states[p].size(); ++k)
-            corrections[p][k] += in_table(scene.slot(name), [&] {
-              return model->correction(forces[p][k], *m.tool, states[p][k]);
+            corrections[p][k] += in_table(scene.slot(named.first), [&] {
+              return model.correction(forces[p][k], *m.tool, states[p][k]);
             });
+      }
     });
   }
   // A linear model moving the tool by more than its own radius is outside its range (a mode far
