@@ -38,13 +38,13 @@ RunnerOptions runner_options(const BatchOptions& b) {
 }
 
 void check_variant(const BatchOptions& b, const std::vector<std::string>& extra,
-                   const std::string& origin) {
+                   const std::string& origin, bool check_unused) {
   SceneDocument doc = SceneDocument::parse_file(b.scene.scene_file);
   for (const auto& o : b.scene.overrides) doc.apply_override(o);
   try {
     for (const auto& o : extra) doc.apply_override(o);
     PluginCatalog catalog(search_path(b.scene.common, doc.plugin_paths()));
-    doc.resolve(catalog);
+    doc.resolve(catalog, check_unused);
   } catch (const InputError& e) {
     throw InputError(SourceRef{"command line"}, origin, e.what());
   }

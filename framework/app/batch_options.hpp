@@ -25,7 +25,8 @@ RunnerOptions runner_options(const BatchOptions& b);
 
 // Resolves the scene with its base overrides plus `extra`; an InputError names `origin` (the
 // option that asked for the variant) and the value.
+// With `check_unused`, tables the run would not use are checked too (a swapped model).
 void check_variant(const BatchOptions& b, const std::vector<std::string>& extra,
-                   const std::string& origin);
+                   const std::string& origin, bool check_unused = false);
 
 }  // namespace topomill::cli

@@ -104,7 +104,7 @@ json to_json(const CaseResult& r) {
             {"error", r.error},     {"roughness", r.roughness},
             {"wall_s", r.wall_s},   {"stages", r.stages},
             {"work", r.work},       {"effects", r.effects},
-            {"dir", r.dir}};
+            {"dir", r.dir},         {"rank", r.rank}};
   return j;
 }
 
@@ -121,6 +121,7 @@ CaseResult from_json(const json& j) {
   r.work = j.at("work").get<std::map<std::string, std::uint64_t>>();
   r.effects = j.at("effects").get<std::vector<std::string>>();
   r.dir = j.at("dir");
+  r.rank = j.at("rank");
   return r;
 }
 
@@ -171,10 +172,12 @@ std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOp
   std::vector<CaseResult> results;
   std::map<pid_t, std::size_t> running;  // pid -> case index
   std::size_t next = 0, finished = 0;
-  auto report = [&](const CaseResult& r) {
+  auto report = [&](CaseResult& r) {
+    r.rank = mpi.rank();
     ++finished;
     if (!o.progress) return;
-    std::cerr << "[" << finished << "/" << mine.size() << "] " << r.id << ": "
+    std::cerr << (mpi.ranks() > 1 ? "rank " + std::to_string(mpi.rank()) + " " : "") << "["
+              << finished << "/" << mine.size() << "] " << r.id << ": "
               << (r.ok ? (r.resumed ? "done earlier" : "ok") : "FAILED: " + r.error) << "\n";
   };
   auto collect = [&](pid_t pid, int status) {
@@ -192,8 +195,8 @@ std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOp
       r.error = failure_message(log_file(dir), status);
       fs::remove(args_file(dir));
     }
-    results.push_back(r);
     report(r);
+    results.push_back(r);
   };
 
   while (next < mine.size() || !running.empty()) {
@@ -213,8 +216,8 @@ std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOp
       if (already_done(dir, args, o.scene_file)) {
         CaseResult r = from_summary(c.id, dir);
         r.resumed = true;
-        results.push_back(r);
         report(r);
+        results.push_back(r);
         continue;
       }
       write_atomically(args_file(dir).string(), [&](std::ostream& out) { out << joined(args); });

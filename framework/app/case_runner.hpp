@@ -30,6 +30,7 @@ struct CaseResult {
   std::map<std::string, std::uint64_t> work;  // evaluator work counts, "nodes"
   std::vector<std::string> effects;
   std::string dir;  // the case's output directory
+  int rank = 0;     // the MPI rank that ran it (0 without MPI)
 };
 
 struct RunnerOptions {

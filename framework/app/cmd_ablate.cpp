@@ -91,8 +91,13 @@ int cmd_ablate(const Args& args) {
       throw InputError(SourceRef{"command line"}, "--swap",
                        "'" + spec + "': expected slot=model, e.g. dynamics=modal_exact");
     const std::string table = table_for(spec.substr(0, eq), scene);
+    const auto& slot = scene.slot(table);
+    if (!slot.enabled)
+      throw InputError(SourceRef{"command line"}, "--swap",
+                       "'" + spec + "': the scene does not use [" + table + "]; enable it (--set " +
+                           table + ".enabled=true) to compare its models");
     const std::vector<std::string> set = {table + ".plugin=\"" + spec.substr(eq + 1) + "\""};
-    check_variant(b, set, "--swap " + spec);
+    check_variant(b, set, "--swap " + spec, /*check_unused=*/true);
     add(table + "=" + spec.substr(eq + 1), set);
   }
   if (cases.size() == 1)

@@ -158,6 +158,8 @@ int cmd_sweep(const Args& args) {
   for (const char* h : {"status", "Sa_um", "Sq_um", "Sz_um", "Ssk", "Sku", "Sdq", "Sdr_percent",
                         "time_s", "stages", "error"})
     table.header.push_back(h);
+  const bool ranks = Distribution::instance().ranks() > 1;
+  if (ranks) table.header.push_back("rank");
   int failed = 0;
   for (std::size_t i = 0; i < results.size(); ++i) {
     const CaseResult& r = results[i];
@@ -169,6 +171,7 @@ int cmd_sweep(const Args& args) {
     row.push_back(r.ok ? cell(r.wall_s) : "");
     row.push_back(stage_list(r));
     row.push_back(r.error);
+    if (ranks) row.push_back(std::to_string(r.rank));
     table.rows.push_back(row);
     failed += r.ok ? 0 : 1;
   }

@@ -96,7 +96,8 @@ class ToothPassage : public TopographyEvaluator {
     }
     std::sort(order.begin(), order.end());
     double best = INFINITY;
-    for (const auto& [across, p] : order) {
+    for (const auto& entry : order) {
+      const std::size_t p = entry.second;  // (C++17 lambdas cannot capture a binding)
       const double tl = path.pass(p).t_end;
       // When the centre passes the node along the feed: secant steps on a nearly linear function.
       auto along = [&](double t) {
