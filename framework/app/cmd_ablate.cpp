@@ -1,5 +1,6 @@
 // topomill ablate SCENE [--swap slot=model ...]: the scene as given, with each enabled effect
-// switched off in turn, with all of them off (ideal), and with each named alternative model;
+// switched off in turn (or, --additive, each alone), with all of them off (ideal), and with each
+// named alternative model;
 // a table of Sa, Sq, Sz and their change against the full model, with run times and stages, a
 // bar chart and the residual heat maps side by side on one colour scale.
 #include <cmath>
@@ -48,12 +49,15 @@ std::string percent_change(double v, double full) {
 int cmd_ablate(const Args& args) {
   BatchOptions b;
   std::vector<std::string> swaps;
+  bool additive = false;
   po::options_description opts(
       "topomill ablate SCENE [--swap slot=model ...] [--jobs N]: the scene with each enabled "
       "effect off in turn, all off (ideal), and each swapped model; writes ablation.csv, "
       "ablation.md, ablation.png (Sa per variant) and ablation_maps.png (resumable)");
   opts.add_options()("swap", po::value(&swaps)->composing(),
-                     "an alternative model for one variant, e.g. --swap dynamics=modal_exact");
+                     "an alternative model for one variant, e.g. --swap dynamics=modal_exact")(
+      "additive", po::bool_switch(&additive),
+      "each effect alone on the ideal model instead of each switched off in turn");
   add_batch_options(opts, b);
   LoadedScene loaded = load_batch(args, opts, b, "ablation");
   if (!loaded.scene) {
@@ -80,11 +84,21 @@ int cmd_ablate(const Args& args) {
   add("full", {});
   const auto effects = scene.enabled_effects();
   std::vector<std::string> all_off;
-  for (const auto& e : effects) {
-    add("no " + e, {e + ".enabled=false"});
-    all_off.push_back(e + ".enabled=false");
+  for (const auto& e : effects) all_off.push_back(e + ".enabled=false");
+  if (additive) {
+    // The paper's view: ideal, then each effect alone on top of it.
+    if (!effects.empty()) add("ideal", all_off);
+    if (effects.size() > 1)
+      for (const auto& e : effects) {
+        std::vector<std::string> only;
+        for (const auto& other : effects)
+          if (other != e) only.push_back(other + ".enabled=false");
+        add("only " + e, only);
+      }
+  } else {
+    for (const auto& e : effects) add("no " + e, {e + ".enabled=false"});
+    if (effects.size() > 1) add("ideal", all_off);
   }
-  if (effects.size() > 1) add("ideal", all_off);
   for (const auto& spec : swaps) {
     const auto eq = spec.find('=');
     if (eq == std::string::npos)

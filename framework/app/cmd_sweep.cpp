@@ -97,11 +97,9 @@ void plot_per_key(const std::vector<Varied>& varied, const std::vector<Case>& ca
     for (std::size_t i = 0; i < cases.size() && i < results.size(); ++i) {
       std::string others;
       for (std::size_t m = 0; m < varied.size(); ++m)
-        if (m != k) {
-          const std::string& key = cases[i].columns[m].first;  // the key without its table
-          others += (others.empty() ? "" : ", ") + key.substr(key.find('.') + 1) + "=" +
+        if (m != k)
+          others += (others.empty() ? "" : ", ") + cases[i].columns[m].first + "=" +
                     cases[i].columns[m].second;
-        }
       Series& s = series[others];
       s.name = others.empty() ? "Sa" : others;
       const std::string& value = cases[i].columns[k].second;

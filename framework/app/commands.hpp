@@ -16,5 +16,6 @@ int cmd_describe(const Args& args);
 int cmd_measure(const Args& args);
 int cmd_sweep(const Args& args);
 int cmd_ablate(const Args& args);
+int cmd_study(const Args& args);
 
 }  // namespace topomill::cli

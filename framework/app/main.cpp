@@ -22,6 +22,7 @@ const Command kCommands[] = {
     {"measure", topomill::cli::cmd_measure, "ISO 25178 parameters of a height-map file"},
     {"ablate", topomill::cli::cmd_ablate, "each effect off in turn, and swapped models"},
     {"sweep", topomill::cli::cmd_sweep, "the cross product of varied scene keys"},
+    {"study", topomill::cli::cmd_study, "accuracy against time, per evaluator and resolution"},
 };
 
 void usage(std::ostream& os) {

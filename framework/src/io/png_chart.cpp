@@ -168,7 +168,7 @@ void frame(const Canvas& cv, const ChartLabels& lab, const Axis& x, const Axis& 
 
 void write_line_chart(const std::string& path, const ChartLabels& lab,
                       const std::vector<Series>& series) {
-  const int w = 860, h = 480;
+  const int w = 980, h = 480;
   Canvas cv(w, h);
   cairo_t* cr = *cv;
   // The ranges cover the points drawn: a failed case (NaN) does not stretch the x axis.
@@ -180,7 +180,7 @@ void write_line_chart(const std::string& path, const ChartLabels& lab,
   const auto [xl, xh] = range(xs, lab.log_x);
   const auto [yl, yh] = range(ys, lab.log_y);
   const bool legend = series.size() > 1;
-  const Axis x{xl, xh, lab.log_x, 80, legend ? w - 270.0 : w - 30.0};
+  const Axis x{xl, xh, lab.log_x, 80, legend ? w - 390.0 : w - 30.0};
   const Axis y{yl, yh, lab.log_y, h - 60.0, 40};
   frame(cv, lab, x, y, w, h);
   cairo_rectangle(cr, x.a, y.b, x.b - x.a, y.a - y.b);
@@ -217,10 +217,10 @@ void write_line_chart(const std::string& path, const ChartLabels& lab,
     for (std::size_t k = 0; k < series.size(); ++k) {
       const double ly = 50 + 22.0 * k;
       palette(cr, k);
-      cairo_rectangle(cr, w - 260, ly, 14, 14);
+      cairo_rectangle(cr, w - 380, ly, 14, 14);
       cairo_fill(cr);
       cairo_set_source_rgb(cr, 0, 0, 0);
-      cv.text(w - 240, ly + 7, series[k].name, 0, 0.5);
+      cv.text(w - 360, ly + 7, series[k].name, 0, 0.5);
     }
   cv.write(path);
 }
