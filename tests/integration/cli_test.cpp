@@ -110,3 +110,31 @@ TEST_CASE("measure on run's x3p output gives the run's own parameters", "[cli][m
   };
   CHECK(sa(m.out) == Approx(sa(summary)).epsilon(1e-9));
 }
+
+TEST_CASE("a run that would not fit in memory is refused before any work, naming the key",
+          "[cli][errors][resources]") {
+  const std::string out = testing::temp_dir("memory");
+  // The grid dominates: 16 x 16 nodes and the Z-map's time table do not fit in 1 MB.
+  auto r = testing::run_topomill("run configs/examples/quick.toml -q --out '" + out + "'",
+                                 "TOPOMILL_MEMORY_LIMIT=1M");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("configs/examples/quick.toml:25:11: error: key 'region.spacing': the run "
+                   "would need about") != std::string::npos);
+  CHECK(r.err.find("and 1 MiB are available") != std::string::npos);
+  // The force/dynamics samples dominate: a fast mode sets a tiny time step on a coarse grid.
+  r = testing::run_topomill(
+      "run tests/stability/base.toml -q --set region.spacing=0.05 --set vibration.enabled=true "
+      "--set 'vibration.modes=[{axis=\"z\", frequency=40000.0, damping=0.02, stiffness=1e9}]' "
+      "--out '" +
+          out + "'",
+      "TOPOMILL_MEMORY_LIMIT=20M");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("error: key 'vibration': the run would need about") != std::string::npos);
+  CHECK(r.err.find("the fastest vibration mode sets the time step") != std::string::npos);
+  r = testing::run_topomill("run configs/examples/quick.toml -q --out '" + out + "'",
+                            "TOPOMILL_MEMORY_LIMIT=lots");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("key 'TOPOMILL_MEMORY_LIMIT': 'lots' is not a positive byte count") !=
+        std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(out));
+}

@@ -27,7 +27,8 @@ TEST_CASE("study: Sa converges down the ladder and nodes grow as 1/spacing^2", "
   const std::string out = testing::temp_dir("study");
   const auto r = testing::run_topomill(
       "study tests/stability/base.toml --evaluator tooth_passage --spacing 0.005,0.02,0.01 "
-      "--jobs 2 --out '" + out + "'");
+      "--jobs 2 --out '" +
+      out + "'");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   const auto rows = rows_of(testing::read_file(out + "/study.csv"));
@@ -53,12 +54,14 @@ TEST_CASE("study: Sa converges down the ladder and nodes grow as 1/spacing^2", "
 
 TEST_CASE("study refuses a bad ladder or reference before running", "[batch][study][errors]") {
   const std::string out = testing::temp_dir("study_refused");
-  auto r = testing::run_topomill("study tests/stability/base.toml --spacing 0.01,-2 --out '" +
-                                 out + "'");
+  auto r = testing::run_topomill("study tests/stability/base.toml --spacing 0.01,-2 --out '" + out +
+                                 "'");
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("key '--spacing': '-2' is not a positive spacing") != std::string::npos);
-  r = testing::run_topomill("study tests/stability/base.toml --evaluator zmap --reference "
-                            "tooth_passage --out '" + out + "'");
+  r = testing::run_topomill(
+      "study tests/stability/base.toml --evaluator zmap --reference "
+      "tooth_passage --out '" +
+      out + "'");
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("'tooth_passage' is not among the studied evaluators") != std::string::npos);
   r = testing::run_topomill("study tests/stability/base.toml --knob zmap.time_step=x --out '" +
