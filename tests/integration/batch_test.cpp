@@ -10,39 +10,15 @@
 #include <sstream>
 #include <thread>
 
+#include "support/csv_table.hpp"
 #include "support/run_command.hpp"
 
 namespace fs = std::filesystem;
 
+using testing::column;
+using testing::read_csv_rows;
+
 namespace {
-
-std::vector<std::vector<std::string>> read_csv_rows(const std::string& path) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream in(testing::read_file(path));
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> row;
-    std::string cell;
-    bool quoted = false;
-    for (char c : line) {
-      if (c == '"')
-        quoted = !quoted;
-      else if (c == ',' && !quoted)
-        row.push_back(cell), cell.clear();
-      else
-        cell += c;
-    }
-    row.push_back(cell);
-    rows.push_back(row);
-  }
-  return rows;
-}
-
-std::size_t column(const std::vector<std::string>& header, const std::string& name) {
-  const auto it = std::find(header.begin(), header.end(), name);
-  REQUIRE(it != header.end());
-  return static_cast<std::size_t>(it - header.begin());
-}
 
 // Sa (um) of a single `topomill run` of the stability base scene with `set`.
 double single_run_sa(const std::vector<std::string>& set) {

@@ -1,27 +1,9 @@
 // topomill study: a resolution ladder per evaluator with its cost, against the finest run.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <sstream>
 
+#include "support/csv_table.hpp"
 #include "support/run_command.hpp"
-
-namespace {
-
-std::vector<std::vector<std::string>> rows_of(const std::string& csv) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream in(csv);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> row;
-    std::stringstream cells(line);
-    std::string cell;
-    while (std::getline(cells, cell, ',')) row.push_back(cell);
-    rows.push_back(row);
-  }
-  return rows;
-}
-
-}  // namespace
 
 TEST_CASE("study: Sa converges down the ladder and nodes grow as 1/spacing^2", "[batch][study]") {
   const std::string out = testing::temp_dir("study");
@@ -31,12 +13,10 @@ TEST_CASE("study: Sa converges down the ladder and nodes grow as 1/spacing^2", "
       out + "'");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
-  const auto rows = rows_of(testing::read_file(out + "/study.csv"));
+  const auto rows = testing::read_csv_rows(out + "/study.csv");
   REQUIRE(rows.size() == 4);
   const auto& h = rows[0];
-  auto col = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(h.begin(), h.end(), name) - h.begin());
-  };
+  auto col = [&](const std::string& name) { return testing::column(h, name); };
   // Coarse to fine, whatever order the spacings were given in; the finest is the reference.
   CHECK(rows[1][col("spacing_mm")] == "0.02");
   CHECK(rows[3][col("spacing_mm")] == "0.005");
