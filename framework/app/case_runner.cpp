@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -207,7 +208,9 @@ std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOp
         const pid_t pid = waitpid(-1, &status, 0);
         if (pid > 0) running.erase(pid);
       }
-      throw Interrupted();
+      throw Interrupted(
+          "interrupted (SIGINT): the running cases were stopped and wrote nothing; the finished "
+          "ones are kept: rerun the same command to go on");
     }
     if (next < mine.size() && running.size() < std::max(1u, o.jobs)) {
       const Case& c = cases[mine[next++]];

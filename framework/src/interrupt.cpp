@@ -10,7 +10,6 @@ static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs 
 
 extern "C" void on_sigint(int) {
   g_stop.store(true);
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
 }
 }  // namespace
 
@@ -20,15 +19,13 @@ Interrupted::Interrupted()
 void install_interrupt_handler() {
   struct sigaction sa {};
   sa.sa_handler = on_sigint;
+  sa.sa_flags = SA_RESETHAND;  // a second Ctrl-C ends the process at once
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
 }
 
 const std::atomic<bool>& stop_flag() {
   return g_stop;
-}
-void request_stop() {
-  g_stop.store(true);
 }
 
 void throw_if_interrupted() {

@@ -4,13 +4,15 @@
 
 #include <atomic>
 #include <stdexcept>
+#include <string>
 
 namespace topomill {
 
-// Thrown at a check after SIGINT (or any caller's request_stop()).
+// Thrown at a check after SIGINT.
 class Interrupted : public std::runtime_error {
  public:
   Interrupted();
+  explicit Interrupted(const std::string& what) : std::runtime_error(what) {}
 };
 
 // Installs the SIGINT handler. Safe to call more than once.
@@ -18,7 +20,6 @@ void install_interrupt_handler();
 
 // The flag the handler sets; EvaluationRequest::stop points at it.
 const std::atomic<bool>& stop_flag();
-void request_stop();
 
 // Throws Interrupted if a stop was requested.
 void throw_if_interrupted();
