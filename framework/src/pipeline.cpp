@@ -127,6 +127,7 @@ static void apply_effects(const Scene& scene, const Prepared& m, StageClock& clo
       throw_if_interrupted();
       const auto n = static_cast<std::size_t>(std::ceil(path.pass(p).t_end / dt)) + 1;
       for (std::size_t k = 0; k < n; ++k) {
+        if (k % 1024 == 0) throw_if_interrupted();  // a pass can take seconds
         CutState st;
         st.time = static_cast<double>(k) * dt;
         st.spindle_angle = path.spindle_angle(p, st.time);
