@@ -12,11 +12,13 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "distribution.hpp"
 #include "interrupt.hpp"
 #include "io/atomic_file.hpp"
+#include "topomill/error.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -163,6 +165,12 @@ std::string case_id(const std::string& text) {
 std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOptions& o) {
   const Distribution& mpi = Distribution::instance();
   const fs::path root = fs::path(o.out_dir) / "cases";
+  std::set<std::string> ids;
+  for (const auto& c : cases)
+    if (!ids.insert(c.id).second)
+      throw InputError(
+          SourceRef{"command line"}, "--vary/--swap/--spacing",
+          "two cases would share the directory '" + c.id + "': a value is given twice");
   fs::create_directories(root);
 
   std::vector<std::size_t> mine;
@@ -227,9 +235,13 @@ std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOp
       running[spawn(args, log_file(dir))] = mine[next - 1];
       continue;
     }
+    // Polling, so that a Ctrl-C arriving just before the wait is seen within 20 ms.
     int status = 0;
-    const pid_t pid = waitpid(-1, &status, 0);
-    if (pid > 0 && running.count(pid)) collect(pid, status);
+    const pid_t pid = waitpid(-1, &status, WNOHANG);
+    if (pid > 0 && running.count(pid))
+      collect(pid, status);
+    else if (pid == 0)
+      usleep(20000);
   }
 
   // Gather on rank 0, in the cases' order.
