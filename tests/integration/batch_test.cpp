@@ -114,6 +114,10 @@ TEST_CASE("sweep and ablate refuse bad requests before running anything", "[batc
   CHECK(r.err.find("feed_per_tooth") != std::string::npos);  // did you mean
   r = testing::run_topomill("sweep tests/stability/base.toml --out '" + out + "'");
   CHECK(r.exit_code == 2);
+  r = testing::run_topomill("sweep tests/stability/base.toml --vary region.lambda=10,10 --out '" +
+                            out + "'");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("a value is given twice") != std::string::npos);
   r = testing::run_topomill("ablate tests/stability/base.toml --swap engine=x --out '" + out + "'");
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("'engine' is not a slot; expected one of") != std::string::npos);
