@@ -235,8 +235,6 @@ void write_bar_chart(const std::string& path, const ChartLabels& lab,
     if (std::isfinite(b.second)) top = std::max(top, b.second);
   const Axis y{0, top > 0 ? top * 1.15 : 1, false, h - 90.0, 40};
   const Axis x{0, 1, false, 80, w - 20.0};
-  ChartLabels no_x = lab;
-  no_x.x.clear();
   // Frame and y ticks only: the x axis carries the bar labels.
   cairo_set_line_width(cr, 1);
   cairo_rectangle(cr, x.a, y.b, x.b - x.a, y.a - y.b);
