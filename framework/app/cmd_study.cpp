@@ -106,7 +106,14 @@ int cmd_study(const Args& args) {
   }
   std::sort(spacings.rbegin(), spacings.rend());  // coarse to fine
   std::vector<Knob> knob_list;
-  for (const auto& k : knobs) knob_list.push_back(parse_knob(k));
+  for (const auto& k : knobs) {
+    knob_list.push_back(parse_knob(k));
+    if (std::find(evaluators.begin(), evaluators.end(), knob_list.back().evaluator) ==
+        evaluators.end())
+      throw InputError(
+          SourceRef{"command line"}, "--knob",
+          "'" + k + "': '" + knob_list.back().evaluator + "' is not among the studied evaluators");
+  }
 
   std::vector<Case> cases;
   std::vector<std::string> case_evaluator;

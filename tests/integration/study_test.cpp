@@ -47,4 +47,10 @@ TEST_CASE("study refuses a bad ladder or reference before running", "[batch][stu
   r = testing::run_topomill("study tests/stability/base.toml --knob zmap.time_step=x --out '" +
                             out + "'");
   CHECK(r.exit_code == 2);
+  r = testing::run_topomill(
+      "study tests/stability/base.toml --evaluator tooth_passage --knob "
+      "zmap.time_step_fraction=0.5 --out '" +
+      out + "'");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("'zmap' is not among the studied evaluators") != std::string::npos);
 }
