@@ -24,14 +24,7 @@ struct Prepared {
     scene = doc.resolve(catalog);
     m = topomill::prepare(*scene, catalog);
   }
-  topomill::EvaluationRequest request() const {
-    topomill::EvaluationRequest rq;
-    rq.tool = m.tool.get();
-    rq.path = m.layout.path.get();
-    rq.kappa = m.layout.kappa;
-    rq.lambda_max = m.layout.lambda_max;
-    return rq;
-  }
+  topomill::EvaluationRequest request() const { return topomill::evaluation_request(m, 1); }
 };
 
 void BM_EdgePoint(benchmark::State& state) {

@@ -55,6 +55,16 @@ std::shared_ptr<T> make(const Scene& scene, const PluginCatalog& catalog,
 }
 }  // namespace
 
+EvaluationRequest evaluation_request(const Prepared& m, unsigned threads) {
+  EvaluationRequest rq;
+  rq.tool = m.tool.get();
+  rq.path = m.layout.path.get();
+  rq.kappa = m.layout.kappa;
+  rq.lambda_max = m.layout.lambda_max;
+  rq.threads = threads;
+  return rq;
+}
+
 Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned threads) {
   Prepared out;
   out.tool = make<ToolGeometry>(scene, catalog, "tool");
@@ -220,12 +230,7 @@ RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog,
       const double v = m.surface->height(L.grid.y(j));
       for (std::size_t i = 0; i < L.grid.nx; ++i) map.at(i, j) = v;
     }
-    EvaluationRequest rq;
-    rq.tool = m.tool.get();
-    rq.path = L.path.get();
-    rq.kappa = L.kappa;
-    rq.lambda_max = L.lambda_max;
-    rq.threads = options.threads;
+    EvaluationRequest rq = evaluation_request(m, options.threads);
     if (options.progress) rq.progress = [&](double f) { options.progress("evaluate", f); };
     rq.stop = &stop_flag();
     m.evaluator->evaluate(rq, map, result.work);

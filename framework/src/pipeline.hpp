@@ -56,6 +56,9 @@ struct Prepared {
   Layout layout;
 };
 
+// What the evaluator is asked for a prepared scene: tool, path, contact range, threads.
+EvaluationRequest evaluation_request(const Prepared& m, unsigned threads);
+
 // Throws InputError for scenes the model cannot represent, or that would not fit in memory with
 // `threads` evaluator threads.
 Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned threads = 1);

@@ -88,12 +88,7 @@ std::uint64_t effect_samples(const Prepared& m) {
 MemoryEstimate estimate_memory(const Prepared& m, unsigned threads) {
   MemoryEstimate e;
   const Grid& g = m.layout.grid;
-  EvaluationRequest rq;
-  rq.tool = m.tool.get();
-  rq.path = m.layout.path.get();
-  rq.kappa = m.layout.kappa;
-  rq.lambda_max = m.layout.lambda_max;
-  rq.threads = threads;
+  const EvaluationRequest rq = evaluation_request(m, threads);
   const double nodes = static_cast<double>(g.nx) * static_cast<double>(g.ny);
   const double grid =
       nodes * kCoreBytesPerNode + static_cast<double>(m.evaluator->extra_memory(rq, g));

@@ -106,11 +106,7 @@ TEST_CASE("tooth_passage follows the corrected trajectory", "[fast][effects]") {
       for (std::size_t p = 0; p < path.passes(); ++p)
         path.set_correction(p, 1e-3, std::vector<topomill::Vec3>(4, topomill::Vec3(0, 0, lift)));
     topomill::HeightMap map(m.layout.grid, INFINITY);
-    topomill::EvaluationRequest rq;
-    rq.tool = m.tool.get();
-    rq.path = &path;
-    rq.kappa = m.layout.kappa;
-    rq.lambda_max = m.layout.lambda_max;
+    const topomill::EvaluationRequest rq = topomill::evaluation_request(m, 1);
     topomill::WorkCounts counts;
     m.evaluator->evaluate(rq, map, counts);
     return map;
