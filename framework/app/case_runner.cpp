@@ -1,13 +1,10 @@
 #include "case_runner.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -18,12 +15,11 @@
 #include "distribution.hpp"
 #include "interrupt.hpp"
 #include "io/atomic_file.hpp"
+#include "spawn.hpp"
 #include "topomill/error.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-extern char** environ;
 
 namespace topomill::cli {
 
@@ -128,29 +124,6 @@ CaseResult from_json(const json& j) {
   return r;
 }
 
-pid_t spawn(const std::vector<std::string>& args, const fs::path& log) {
-  std::vector<std::string> words = {"/proc/self/exe"};
-  words.insert(words.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  // The case's own process group: a Ctrl-C reaches the sweep, which stops the cases itself.
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
-  posix_spawnattr_setpgroup(&attr, 0);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, words[0].c_str(), &actions, &attr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attr);
-  if (rc != 0) throw std::runtime_error("cannot start a case: " + std::string(strerror(rc)));
-  return pid;
-}
-
 }  // namespace
 
 std::string case_id(const std::string& text) {
@@ -232,7 +205,8 @@ std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOp
         continue;
       }
       write_atomically(args_file(dir).string(), [&](std::ostream& out) { out << joined(args); });
-      running[spawn(args, log_file(dir))] = mine[next - 1];
+      // Each case in a process group of its own: a Ctrl-C reaches the sweep, which stops them.
+      running[spawn_logged("/proc/self/exe", args, log_file(dir).string(), true)] = mine[next - 1];
       continue;
     }
     // Polling, so that a Ctrl-C arriving just before the wait is seen within 20 ms.

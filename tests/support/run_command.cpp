@@ -1,7 +1,5 @@
 #include "support/run_command.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -9,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "spawn.hpp"
 
 namespace testing {
 
@@ -52,23 +52,16 @@ CommandResult run_topomill(const std::string& args, const std::string& env) {
 }
 
 int spawn_topomill(const std::vector<std::string>& args, const std::string& log) {
-  std::vector<std::string> words = {TOPOMILL_EXE};
-  words.insert(words.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
   // The program resolves scene paths against its working directory: the source tree.
   const fs::path here = fs::current_path();
   fs::current_path(source_dir());
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, TOPOMILL_EXE, &actions, nullptr, argv.data(), environ);
+  int pid = -1;
+  try {
+    pid = topomill::spawn_logged(TOPOMILL_EXE, args, log, /*own_group=*/false);
+  } catch (const std::exception&) {
+  }
   fs::current_path(here);
-  posix_spawn_file_actions_destroy(&actions);
-  return rc == 0 ? pid : -1;
+  return pid;
 }
 
 int wait_for(int pid) {
