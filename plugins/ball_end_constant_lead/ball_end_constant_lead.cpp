@@ -18,6 +18,7 @@ class BallEndConstantLead : public BallEnd {
   explicit BallEndConstantLead(const Params& p) : BallEnd(p) {}
 
   double lag(double alpha) const override { return tan_helix_ * std::cos(alpha); }
+  double lag_sc(double, double cos_alpha) const override { return tan_helix_ * cos_alpha; }
   double lag_slope(double alpha) const override { return -tan_helix_ * std::sin(alpha); }
 };
 

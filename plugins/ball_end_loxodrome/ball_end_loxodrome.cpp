@@ -29,6 +29,10 @@ class BallEndLoxodrome : public BallEnd {
   double lag(double alpha) const override {
     return tan_helix_ * std::log(1.0 / std::tan(0.5 * alpha));
   }
+  // cot(alpha / 2) = (1 + cos alpha) / sin alpha: no tan, no asin.
+  double lag_sc(double sin_alpha, double cos_alpha) const override {
+    return tan_helix_ * std::log((1.0 + cos_alpha) / sin_alpha);
+  }
   double lag_slope(double alpha) const override { return -tan_helix_ / std::sin(alpha); }
   double min_polar_angle() const override { return tip_angle_; }
 

@@ -16,6 +16,10 @@ class TOPOMILL_API ToolGeometry : public Model {
   // Lag angle Psi(alpha) (rad) of the edge behind its shank end, and its derivative.
   virtual double lag(double alpha) const = 0;
   virtual double lag_slope(double alpha) const = 0;
+  // The lag from sin(alpha) and cos(alpha), for callers that have them and not alpha (a node
+  // under the ball gives both from a square root; asin would cost more than the rest).
+  // Override with a closed form where one exists; must agree with lag(alpha).
+  virtual double lag_sc(double sin_alpha, double cos_alpha) const;
   // Smallest polar angle at which the edge may be evaluated (rad). An edge whose lag is singular
   // at the tip (the loxodrome) returns a positive value; callers treat [0, min) as the tip point.
   virtual double min_polar_angle() const { return 0.0; }

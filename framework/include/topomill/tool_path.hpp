@@ -49,6 +49,12 @@ class TOPOMILL_API ToolPath {
   Vec3 nominal_centre(std::size_t p, double t) const;
   // Ball centre with the correction of Eq. 32-33 added (linear between correction samples).
   Vec3 centre(std::size_t p, double t) const;
+  // The correction alone (zero when uncorrected), so that an evaluator can tabulate the smooth
+  // nominal part and add this piecewise-linear part exactly.
+  Vec3 correction(std::size_t p, double t) const;
+  // Time between the correction's samples of pass p (0 when it has none): between them it is
+  // linear, so its extremes over any span are at samples or at the span's ends.
+  double correction_step(std::size_t p) const { return corrections_[p].dt; }
   double spindle_angle(std::size_t p, double t) const {
     return passes_[p].phase + spindle_rate_ * t;
   }
@@ -60,7 +66,6 @@ class TOPOMILL_API ToolPath {
   double max_correction() const { return max_correction_; }
 
  private:
-  Vec3 correction(std::size_t p, double t) const;
 
   std::shared_ptr<const SurfaceShape> surface_;
   double offset_, feed_speed_, spindle_rate_;

@@ -1,0 +1,75 @@
+// The ball centre of one pass, cheap to evaluate: the nominal centre (smooth: a curve on the
+// surface's offset) is tabulated and interpolated with cubics, the correction (piecewise linear
+// already) is added exactly. A probe then costs a few multiplies instead of the surface's
+// trigonometry. The step is halved until the interpolation is within `tolerance` of the nominal
+// centre at every interval's midpoint, so the table is as good as the path at any surface.
+#pragma once
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "topomill/tool_path.hpp"
+
+namespace topomill::plugins {
+
+class CentreTable {
+ public:
+  // Covers [t_lo, t_hi]; outside it the path is asked directly.
+  CentreTable(const ToolPath& path, std::size_t pass, double t_lo, double t_hi, double tolerance)
+      : path_(&path), pass_(pass), corrected_(path.corrected()) {
+    double dt = std::max((t_hi - t_lo) / 16, 1e-9);
+    for (int attempt = 0; attempt < 40; ++attempt, dt /= 2) {
+      build(t_lo, t_hi, dt);
+      if (max_midpoint_error() <= tolerance) return;
+    }
+    throw std::runtime_error("tooth_passage: the tool path is not smooth enough to tabulate");
+  }
+
+  Vec3 operator()(double t) const {
+    Vec3 c = nominal(t);
+    if (corrected_) c += path_->correction(pass_, t);
+    return c;
+  }
+
+  Vec3 nominal(double t) const {
+    const double u = (t - t0_) * inv_dt_;
+    const double k = std::floor(u);
+    if (!(k >= 1 && k + 2 < static_cast<double>(knots_.size())))
+      return path_->nominal_centre(pass_, t);
+    const std::size_t i = static_cast<std::size_t>(k);
+    const double s = u - k;
+    // Lagrange weights of the knots i-1 .. i+2 at i + s.
+    const double a = s + 1, b = s, c = s - 1, d = s - 2;
+    return (-b * c * d / 6) * knots_[i - 1] + (a * c * d / 2) * knots_[i] +
+           (-a * b * d / 2) * knots_[i + 1] + (a * b * c / 6) * knots_[i + 2];
+  }
+
+  std::size_t bytes() const { return knots_.size() * sizeof(Vec3); }
+
+ private:
+  void build(double t_lo, double t_hi, double dt) {
+    t0_ = t_lo - 2 * dt;
+    inv_dt_ = 1 / dt;
+    const auto n = static_cast<std::size_t>(std::ceil((t_hi - t0_) / dt)) + 3;
+    knots_.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      knots_[i] = path_->nominal_centre(pass_, t0_ + static_cast<double>(i) * dt);
+  }
+  double max_midpoint_error() const {
+    double worst = 0;
+    for (std::size_t i = 1; i + 2 < knots_.size(); ++i) {
+      const double t = t0_ + (static_cast<double>(i) + 0.5) / inv_dt_;
+      worst = std::max(worst, (nominal(t) - path_->nominal_centre(pass_, t)).cwiseAbs().maxCoeff());
+    }
+    return worst;
+  }
+
+  const ToolPath* path_;
+  std::size_t pass_;
+  bool corrected_;
+  double t0_ = 0, inv_dt_ = 1;
+  std::vector<Vec3> knots_;
+};
+
+}  // namespace topomill::plugins

@@ -1,0 +1,155 @@
+#include "passage_geometry.hpp"
+
+#include <algorithm>
+
+namespace topomill::plugins {
+
+namespace {
+// Interpolated centres agree with the path to a nanometre's tenth: far below any grid.
+constexpr double kTableTolerance = 1e-7;  // mm
+}  // namespace
+
+PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iterations_)
+    : path(rq.path),
+      tool(rq.tool),
+      R(rq.tool->radius()),
+      R2(R * R),
+      omega(rq.path->spindle_rate()),
+      speed(std::max(rq.path->feed_speed(), 1e-12)),
+      rev(kTwoPi / std::abs(omega)),
+      period(rev / rq.tool->teeth()),
+      near_axis(10 * rq.path->feed_speed() / std::abs(omega)),
+      reach(R + rq.path->max_correction()),
+      margin(margin_),
+      kappa(rq.kappa),
+      iterations(iterations_),
+      teeth(rq.tool->teeth()),
+      along_y(rq.path->feed_axis() == ToolPath::FeedAxis::Y) {
+  for (int j = 0; j < teeth; ++j) tooth_angle.push_back(tool->tooth_angle(j));
+  sin_tip = std::sin(tool->min_polar_angle());
+  lag_tip = tool->lag(tool->min_polar_angle());
+  // A probe may look a revolution beyond either end of a pass.
+  const double pad = 2 * rev;
+  for (std::size_t p = 0; p < path->passes(); ++p) {
+    centre.emplace_back(*path, p, -pad, path->pass(p).t_end + pad, kTableTolerance);
+    const Vec3 c0 = path->nominal_centre(p, 0.0);
+    line.push_back(along_y ? c0.x() : c0.y());
+    // The correction is linear between its samples: its range is that of the samples.
+    Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
+    if (const double step = path->correction_step(p); step > 0) {
+      lo = hi = path->correction(p, 0.0);
+      for (std::size_t k = 1; static_cast<double>(k - 1) * step <= path->pass(p).t_end; ++k) {
+        const Vec3 d = path->correction(p, static_cast<double>(k) * step);
+        lo = lo.cwiseMin(d), hi = hi.cwiseMax(d);
+      }
+    }
+    shift_lo.push_back(lo), shift_hi.push_back(hi);
+  }
+}
+
+double PassageSetup::level_time(std::size_t p, double x, double y) const {
+  const double tl = path->pass(p).t_end;
+  auto along = [&](double t) {
+    const Vec3 c = centre[p].nominal(t);
+    return along_y ? c.y() - y : c.x() - x;
+  };
+  double t0 = 0, f0 = along(0), t1 = tl, f1 = along(tl);
+  if (f0 > reach || f1 < -reach) return NAN;  // the pass never comes level with the node
+  for (int k = 0; k < 8 && f1 != f0; ++k) {
+    const double t2 = t1 - f1 * (t1 - t0) / (f1 - f0);
+    t0 = t1, f0 = f1, t1 = std::clamp(t2, 0.0, tl), f1 = along(t1);
+    if (std::abs(f1) < 1e-12) break;
+  }
+  return t1;
+}
+
+std::pair<double, double> PassageSetup::contact_radii(std::size_t p, double t) const {
+  const double lambda = std::abs(path->surface().inclination(path->surface_y(p, t)));
+  const double lo = std::max(0.0, lambda - margin * kappa);
+  const double hi = std::min(M_PI / 2, lambda + margin * kappa);
+  return {R * std::sin(lo), R * std::sin(hi)};
+}
+
+double PassageGeometry::crossing(int tooth, double t, double& slope, Probe& last) const {
+  double g_prev = 0, t_prev = t;
+  last = {false, INFINITY, INFINITY, INFINITY};
+  for (int k = 0; k < s_.iterations; ++k) {
+    last = probe(tooth, t);
+    const double gk = last.g;
+    if (converged(last)) break;
+    if (k > 0 && t != t_prev && std::abs(gk - g_prev) < M_PI) {
+      const double sec = (gk - g_prev) / (t - t_prev);
+      if (std::abs(sec) > 0.1 * std::abs(s_.omega)) slope = sec;
+    }
+    g_prev = gk, t_prev = t;
+    t -= gk / slope;
+  }
+  return t;
+}
+
+// Usually the secant step finds the one crossing there; close to the tool's axis (the node's
+// azimuth then turns fast, at feed / distance) or where it fails, the window is scanned for every
+// sign change of g (skipping the jumps of its wrap at +-pi) and each bracket bisected.
+void PassageGeometry::crossings_near(int tooth, double guess, std::vector<double>& roots) const {
+  roots.clear();
+  double slope = s_.omega;
+  Probe last{};
+  const double t = crossing(tooth, guess, slope, last);
+  if (converged(last) && last.rho > s_.near_axis) {
+    roots.push_back(t);
+    return;
+  }
+  constexpr int kSamples = 48;
+  double ta = guess - s_.rev / 2, ga = probe(tooth, ta).g;
+  for (int k = 1; k <= kSamples; ++k) {
+    const double tb = guess - s_.rev / 2 + s_.rev * k / kSamples, gb = probe(tooth, tb).g;
+    if ((ga < 0) != (gb < 0) && std::abs(gb - ga) < M_PI) {
+      double lo_t = ta, hi_t = tb, lo_g = ga;
+      for (int it = 0; it < 50 && hi_t - lo_t > 1e-13 * s_.rev; ++it) {
+        const double mid = 0.5 * (lo_t + hi_t), gm = probe(tooth, mid).g;
+        if ((gm < 0) == (lo_g < 0))
+          lo_t = mid, lo_g = gm;
+        else
+          hi_t = mid;
+      }
+      roots.push_back(0.5 * (lo_t + hi_t));
+    }
+    ta = tb, ga = gb;
+  }
+}
+
+double PassageGeometry::walk(double t_b, std::vector<double>& roots,
+                             std::uint64_t& visited) const {
+  const double t_end = this->t_end(), rev = s_.rev;
+  double best = INFINITY;
+  for (int tooth = 0; tooth < s_.teeth; ++tooth) {
+    const double t_first = crossing(tooth, t_b);
+    for (int dir : {+1, -1}) {
+      double last = INFINITY;
+      int rising = 0;
+      for (int m = (dir > 0 ? 0 : 1); m < 100000 && rising < 2; ++m) {
+        const double guess = t_first + dir * m * rev;
+        if (guess < -rev / 2 || guess > t_end + rev / 2) break;
+        crossings_near(tooth, guess, roots);
+        double lowest = INFINITY;
+        for (double t : roots) {
+          if (t < 0 || t > t_end) continue;
+          const Probe q = probe(tooth, t);
+          ++visited;
+          if (!std::isfinite(q.height)) continue;
+          if (q.over) best = std::min(best, q.height);
+          lowest = std::min(lowest, q.height);
+        }
+        if (!std::isfinite(lowest)) {  // off the ball: past the node
+          if (++rising >= 2) break;
+          continue;
+        }
+        rising = lowest > last ? rising + 1 : 0;
+        last = lowest;
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace topomill::plugins

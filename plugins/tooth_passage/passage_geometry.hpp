@@ -1,0 +1,147 @@
+// One node under one pass of the ball: where the ball is over it, how high, and when a tooth's
+// edge crosses its vertical line. Both walks (the reference per node, the row sweep) are built
+// from these probes.
+//
+// For a node at horizontal offset d(t) = node - centre(t) from the ball's axis, the ball point
+// above it has sin(alpha) = |d| / R and height centre_z - sqrt(R^2 - |d|^2). Tooth j's edge is
+// over the node when its azimuth theta_j + Psi(alpha) + spindle(t) equals the node's azimuth
+// atan2(d): a root of g_j(t) = 0 mod 2 pi, g growing at about the spindle rate.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "centre_table.hpp"
+#include "topomill/topography_evaluator.hpp"
+
+namespace topomill::plugins {
+
+constexpr double kTwoPi = 2 * M_PI;
+
+inline double wrap(double a) { return a - kTwoPi * std::floor(a / kTwoPi + 0.5); }  // (-pi, pi]
+
+// What every node needs from the tool, the path and the knobs, computed once per evaluation.
+struct PassageSetup {
+  PassageSetup(const EvaluationRequest& rq, double margin, int iterations);
+
+  const ToolPath* path;
+  const ToolGeometry* tool;
+  double R, R2, omega, speed;
+  double rev;        // one spindle revolution, s
+  double period;     // one tooth period, s
+  double near_axis;  // closer than this to the axis the node's azimuth turns fast (mm)
+  double reach;      // R plus the largest correction: farther across, a pass cannot touch
+  double margin, kappa;
+  int iterations, teeth;
+  bool along_y;
+  std::vector<double> tooth_angle;
+  double sin_tip, lag_tip;            // below the tip angle the lag is held (ToolGeometry)
+  std::vector<CentreTable> centre;    // per pass
+  std::vector<double> line;           // per pass: its nominal x (feeding along Y) or y
+  // Per pass, the range of the correction over the pass (zero when ideal): wherever the
+  // corrected centre is, it is within [shift_lo, shift_hi] of the nominal one.
+  std::vector<Vec3> shift_lo, shift_hi;
+
+  // The pass's time when its centre is level with (x, y) along the feed (secant steps).
+  double level_time(std::size_t p, double x, double y) const;
+  // The contact range [lo, hi] of polar angles at that time, as R sin(lo), R sin(hi).
+  std::pair<double, double> contact_radii(std::size_t p, double t) const;
+};
+
+struct Probe {
+  bool over;      // under the ball, inside the contact range
+  double g;       // edge azimuth minus node azimuth, wrapped
+  double height;  // ball height above the node (+inf when not under the ball)
+  double rho;     // distance from the axis
+};
+
+class PassageGeometry {
+ public:
+  PassageGeometry(const PassageSetup& s, std::size_t pass, double x, double y, double rho_lo,
+                  double rho_hi)
+      : s_(s), table_(s.centre[pass]), pass_(pass), x_(x), y_(y), rho_lo_(rho_lo),
+        rho_hi_(rho_hi), phase_(s.path->pass(pass).phase) {}
+
+  std::size_t pass() const { return pass_; }
+  double t_end() const { return s_.path->pass(pass_).t_end; }
+
+  Probe probe(int tooth, double t) const {
+    const Vec3 c = table_(t);
+    const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
+    if (r2 >= s_.R2) return {false, 0, INFINITY, std::sqrt(r2)};
+    const double rho = std::sqrt(r2), below = std::sqrt(s_.R2 - r2);
+    const double sin_a = rho / s_.R;
+    const double lag = sin_a < s_.sin_tip ? s_.lag_tip : s_.tool->lag_sc(sin_a, below / s_.R);
+    return {rho >= rho_lo_ && rho <= rho_hi_,
+            wrap(s_.tooth_angle[tooth] + lag + phase_ + s_.omega * t - std::atan2(dy, dx)),
+            c.z() - below, rho};
+  }
+
+  // A lower bound of envelope(t) whatever the correction within the pass's range: the nominal
+  // centre moved by the range's lowest z and as close to the node as the range allows.
+  double floor_envelope(double t) const {
+    const Vec3 c = table_.nominal(t);
+    const Vec3 &lo = s_.shift_lo[pass_], &hi = s_.shift_hi[pass_];
+    const double dx = x_ - c.x(), dy = y_ - c.y();
+    const double ex = dx - std::clamp(dx, lo.x(), hi.x()), ey = dy - std::clamp(dy, lo.y(), hi.y());
+    const double r2 = ex * ex + ey * ey, z = c.z() + lo.z();
+    return r2 < s_.R2 ? z - std::sqrt(s_.R2 - r2) : z + (std::sqrt(r2) - s_.R);
+  }
+
+  // The ball's height over the node, continued past its rim so that it stays unimodal.
+  double envelope(double t) const {
+    const Vec3 c = table_(t);
+    const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
+    return r2 < s_.R2 ? c.z() - std::sqrt(s_.R2 - r2) : c.z() + (std::sqrt(r2) - s_.R);
+  }
+
+  // The crossing of one tooth near `t`: secant iteration on g, started with `slope` (the spindle
+  // rate when nothing better is known: g's other terms, the lag and the node's azimuth, change
+  // far slower). Returns the time; `slope` gets the last secant and `last` the last probe, which
+  // is at the returned time when it converged (|last.g| < 1e-10).
+  double crossing(int tooth, double t, double& slope, Probe& last) const;
+  double crossing(int tooth, double t) const {
+    double slope = s_.omega;
+    Probe last{};
+    return crossing(tooth, t, slope, last);
+  }
+  static bool converged(const Probe& q) { return std::abs(q.g) < 1e-10; }
+
+  // The bottom of `f` (envelope or floor_envelope) within [a, b] (golden section to a 20th of
+  // a tooth period).
+  template <class F>
+  double bottom(F f, double a, double b) const {
+    const double ratio = 0.5 * (std::sqrt(5.0) - 1);
+    double u = b - ratio * (b - a), v = a + ratio * (b - a), fu = f(u), fv = f(v);
+    while (b - a > 0.05 * s_.period) {
+      if (fu < fv)
+        b = v, v = u, fv = fu, u = b - ratio * (b - a), fu = f(u);
+      else
+        a = u, u = v, fu = fv, v = a + ratio * (b - a), fv = f(v);
+    }
+    return 0.5 * (a + b);
+  }
+  // The envelope's bottom within the travel of a ball's diameter either side of t0 (the
+  // reference's choice).
+  double bottom_near(double t0) const {
+    const double span = 2 * s_.R / s_.speed;
+    return bottom([this](double t) { return envelope(t); }, std::max(0.0, t0 - span),
+                  std::min(t_end(), t0 + span));
+  }
+
+  // All crossings of one tooth within half a revolution of `guess`, robustly (see .cpp).
+  void crossings_near(int tooth, double guess, std::vector<double>& roots) const;
+
+  // The reference walk: visits tooth passages outwards from the one nearest t_b until heights
+  // rise twice on both sides; returns the lowest height over the node (+inf if none).
+  double walk(double t_b, std::vector<double>& roots, std::uint64_t& visited) const;
+
+ private:
+  const PassageSetup& s_;
+  const CentreTable& table_;
+  std::size_t pass_;
+  double x_, y_, rho_lo_, rho_hi_, phase_;
+};
+
+}  // namespace topomill::plugins

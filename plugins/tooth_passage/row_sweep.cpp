@@ -1,0 +1,207 @@
+#include "row_sweep.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+namespace topomill::plugins {
+
+double node_height_reference(const PassageSetup& s, double x, double y, NodeCounts& counts,
+                             std::vector<std::pair<double, std::size_t>>& order,
+                             std::vector<double>& roots) {
+  order.clear();
+  for (std::size_t p = 0; p < s.line.size(); ++p) {
+    const double across = std::abs((s.along_y ? x : y) - s.line[p]);
+    if (across < s.reach) order.push_back({across, p});
+  }
+  std::sort(order.begin(), order.end());
+  double best = INFINITY;
+  for (const auto& entry : order) {
+    const std::size_t p = entry.second;
+    const double t0 = s.level_time(p, x, y);
+    if (std::isnan(t0)) continue;
+    const auto radii = s.contact_radii(p, t0);
+    const PassageGeometry geo(s, p, x, y, radii.first, radii.second);
+    const double t_b = geo.bottom_near(t0);
+    if (geo.envelope(t_b) >= best) continue;  // this pass cannot lower the node
+    best = std::min(best, geo.walk(t_b, roots, counts.passages));
+  }
+  return best;
+}
+
+RowSweep::RowSweep(const PassageSetup& s) : s_(s), by_line_(s.line.size()), state_(s.line.size()) {
+  std::iota(by_line_.begin(), by_line_.end(), std::size_t{0});
+  std::sort(by_line_.begin(), by_line_.end(),
+            [&](std::size_t a, std::size_t b) { return s.line[a] < s.line[b]; });
+  for (auto& st : state_) st.roots.resize(static_cast<std::size_t>(s.teeth));
+}
+
+void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCounts& counts) {
+  for (auto& st : state_) {
+    st.active = st.have_bottom = false;
+    for (auto& r : st.roots) r.clear();
+  }
+  const auto n = static_cast<std::ptrdiff_t>(by_line_.size());
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    const double x = xs[i], key = s_.along_y ? x : y;
+    // Passes nearest first, outwards on both sides.
+    std::ptrdiff_t right =
+        std::lower_bound(by_line_.begin(), by_line_.end(), key,
+                         [&](std::size_t p, double v) { return s_.line[p] < v; }) -
+        by_line_.begin();
+    std::ptrdiff_t left = right - 1;
+    bool left_open = left >= 0, right_open = right < n;
+    double best = INFINITY;
+    // A pass that cannot lower the node ends its side; with a correction (each pass has its
+    // own), only the second in a row does.
+    const int misses_to_stop = s_.path->corrected() ? 2 : 1;
+    int misses[2] = {0, 0};
+    while (left_open || right_open) {
+      const bool take_left =
+          !right_open || (left_open && key - s_.line[by_line_[static_cast<std::size_t>(left)]] <=
+                                           s_.line[by_line_[static_cast<std::size_t>(right)]] - key);
+      std::ptrdiff_t& at = take_left ? left : right;
+      bool& open = take_left ? left_open : right_open;
+      int& missed = misses[take_left ? 0 : 1];
+      const std::size_t p = by_line_[static_cast<std::size_t>(at)];
+      bool can_lower = std::abs(key - s_.line[p]) < s_.reach;
+      if (can_lower) best = std::min(best, pass_height(p, x, y, best, can_lower, counts));
+      missed = can_lower ? 0 : missed + 1;
+      at += take_left ? -1 : 1;
+      open = missed < misses_to_stop && at >= 0 && at < n;
+    }
+    if (best < z[i]) z[i] = best, ++counts.updates;
+  }
+}
+
+double RowSweep::pass_height(std::size_t p, double x, double y, double best, bool& can_lower,
+                             NodeCounts& counts) {
+  PassState& st = state_[p];
+  if (!st.active) {
+    const double t0 = s_.level_time(p, x, y);
+    if (std::isnan(t0)) return INFINITY;  // never level with this node: look further
+    const auto radii = s_.contact_radii(p, t0);
+    st.rho_lo = radii.first, st.rho_hi = radii.second, st.active = true;
+  }
+  const PassageGeometry geo(s_, p, x, y, st.rho_lo, st.rho_hi);
+  const bool ideal = !s_.path->corrected();
+  double t_b;
+  if (ideal) {
+    // The envelope has a single minimum: its bottom, followed from node to node, is the pass's
+    // lowest point, and a pass farther out on this side lies higher still.
+    t_b = bottom([&](double t) { return geo.envelope(t); }, geo, st, x, y);
+    if (std::isnan(t_b)) return INFINITY;
+    if (geo.envelope(t_b) >= best) return can_lower = false, INFINITY;
+  } else {
+    // A corrected envelope wiggles: the reference's own bottom and test decide, after a cheap
+    // floor (the correction's whole range) has ruled out the passes that cannot come close.
+    const double t_f = bottom([&](double t) { return geo.floor_envelope(t); }, geo, st, x, y);
+    if (std::isnan(t_f)) return INFINITY;
+    if (geo.floor_envelope(t_f) - 1e-9 >= best) return can_lower = false, INFINITY;
+    t_b = geo.bottom_near(s_.level_time(p, x, y));
+    if (geo.envelope(t_b) >= best) return INFINITY;
+  }
+  bool irregular = false;
+  const double h = walk(geo, st, t_b, ideal ? best : -INFINITY, counts, irregular);
+  if (!irregular) return h;
+  // The reference's own walk, from the reference's own bottom, so that the result is its.
+  ++counts.fallbacks;
+  for (auto& r : st.roots) r.clear();
+  return geo.walk(geo.bottom_near(s_.level_time(p, x, y)), roots_, counts.passages);
+}
+
+// The bottom moves little from one node to the next: a parabola through three heights around
+// the predicted bottom finds it; the golden section over the reference's window when that fails
+// (first node of the row, or a function that is not convex there).
+template <class F>
+double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x, double y) {
+  double t_b = NAN;
+  if (st.have_bottom) {
+    const double tp = st.tb + st.tb_drift, w = 0.1 * s_.period;
+    const double fm = f(tp - w), f0 = f(tp), fp = f(tp + w);
+    const double curvature = fp - 2 * f0 + fm;
+    if (curvature > 0) {
+      const double shift = 0.5 * w * (fm - fp) / curvature;
+      if (std::abs(shift) <= w) t_b = std::clamp(tp + shift, 0.0, geo.t_end());
+    }
+  }
+  if (std::isnan(t_b)) {
+    const double t0 = s_.level_time(geo.pass(), x, y);
+    if (std::isnan(t0)) return NAN;
+    const double span = 2 * s_.R / s_.speed;
+    t_b = geo.bottom(f, std::max(0.0, t0 - span), std::min(geo.t_end(), t0 + span));
+  }
+  st.tb_drift = st.have_bottom ? t_b - st.tb : 0.0;
+  st.tb = t_b, st.have_bottom = true;
+  return t_b;
+}
+
+double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
+                      NodeCounts& counts, bool& irregular) {
+  const double rev = s_.rev, t_end = geo.t_end();
+  const double beyond = 0.05 * s_.period;  // how near t_b may be off the envelope's bottom
+  const bool bounded = best_node > -INFINITY;  // ideal: the envelope has a single minimum
+  double best = INFINITY;
+  std::uint64_t visited = 0;
+  for (int tooth = 0; tooth < s_.teeth; ++tooth) {
+    std::vector<Root>& prev = st.roots[static_cast<std::size_t>(tooth)];
+    fresh_.clear();
+    // The crossing near `guess`, started from the previous node's root predicted nearest to it
+    // (within `reach`); NaN when it is irregular.
+    auto solve = [&](double guess, double reach, Probe& q) {
+      const Root* match = nullptr;
+      for (const Root& r : prev)
+        if (std::abs(r.t + r.drift - guess) < reach) reach = std::abs(r.t + r.drift - guess), match = &r;
+      double slope = match ? match->slope : s_.omega;
+      const double t = geo.crossing(tooth, match ? match->t + match->drift : guess, slope, q);
+      if (!PassageGeometry::converged(q) || q.rho <= s_.near_axis) return double(NAN);
+      fresh_.push_back({t, match ? t - match->t : 0.0, slope});
+      return t;
+    };
+    // The first crossing: the reference's (from t_b) when its walk is to be repeated exactly.
+    Probe first{};
+    const double t_first = solve(t_b, bounded ? 0.75 * rev : 0.0, first);
+    if (std::isnan(t_first)) return irregular = true, INFINITY;
+    for (int dir : {+1, -1}) {
+      double last = INFINITY, t_prev = t_first;
+      int rising = 0;
+      for (int m = (dir > 0 ? 0 : 1); m < 100000 && rising < 2; ++m) {
+        double t = t_first;
+        Probe q = first;
+        if (m > 0) {
+          const double guess = t_prev + dir * rev;
+          if (guess < -rev / 2 || guess > t_end + rev / 2) break;
+          // The next crossing is at least half a revolution on; past the bottom the envelope
+          // only rises, so if it is already too high there, no later passage can lower the node.
+          const double t_bound = t_prev + dir * 0.5 * rev;
+          if (bounded && dir * (t_bound - t_b) >= beyond &&
+              geo.envelope(t_bound) >= std::min(best, best_node))
+            break;
+          t = solve(guess, 0.25 * rev, q);
+          if (std::isnan(t) || dir * (t - t_prev) < 0.6 * rev || dir * (t - t_prev) > 1.6 * rev)
+            return irregular = true, INFINITY;
+        }
+        t_prev = t;
+        double lowest = INFINITY;
+        if (t >= 0 && t <= t_end) {
+          ++visited;
+          if (std::isfinite(q.height)) {
+            if (q.over) best = std::min(best, q.height);
+            lowest = q.height;
+          }
+        }
+        if (!std::isfinite(lowest)) {  // off the ball: past the node
+          if (++rising >= 2) break;
+          continue;
+        }
+        rising = lowest > last ? rising + 1 : 0;
+        last = lowest;
+      }
+    }
+    std::sort(fresh_.begin(), fresh_.end(), [](const Root& a, const Root& b) { return a.t < b.t; });
+    prev.swap(fresh_);
+  }
+  counts.passages += visited;
+  return best;
+}
+
+}  // namespace topomill::plugins

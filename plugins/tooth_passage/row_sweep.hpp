@@ -1,0 +1,59 @@
+// The fast walk: a row's nodes are taken in order and every tooth passage is followed from one
+// node to the next, so each crossing starts a hair from its root (the previous node's root plus
+// its drift, with its slope) and converges in one or two probes. Passes are taken nearest first
+// and stop on a side at the first one whose envelope cannot lower the node; along a passage the
+// walk stops as soon as the envelope, which has a single minimum, proves that no later passage
+// can go below the best height found. Anything irregular (a node near the tool's axis, a
+// crossing that does not converge, passages closer than half a revolution) is handed to the
+// reference walk for that node and pass, so the result is the reference's to round-off.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "passage_geometry.hpp"
+
+namespace topomill::plugins {
+
+struct NodeCounts {
+  std::uint64_t passages = 0;  // tooth passages whose height was read
+  std::uint64_t fallbacks = 0;  // node-pass pairs handed to the reference walk
+  std::uint64_t updates = 0;    // nodes lowered
+};
+
+// The reference: each node from scratch, every pass within reach (golden-section bottom).
+double node_height_reference(const PassageSetup& s, double x, double y, NodeCounts& counts,
+                             std::vector<std::pair<double, std::size_t>>& order,
+                             std::vector<double>& roots);
+
+class RowSweep {
+ public:
+  explicit RowSweep(const PassageSetup& s);
+  // Lowers z[i] (the nodes x[i] of the row at y, in order) wherever an edge passes below.
+  void row(double y, const std::vector<double>& x, double* z, NodeCounts& counts);
+
+ private:
+  struct Root {
+    double t, drift, slope;
+  };
+  struct PassState {
+    bool active = false, have_bottom = false;
+    double rho_lo = 0, rho_hi = 0, tb = 0, tb_drift = 0;
+    std::vector<std::vector<Root>> roots;  // per tooth, the last node's crossings
+  };
+
+  double pass_height(std::size_t p, double x, double y, double best, bool& can_lower,
+                     NodeCounts& counts);
+  template <class F>
+  double bottom(F f, const PassageGeometry& geo, PassState& st, double x, double y);
+  double walk(const PassageGeometry& geo, PassState& st, double t_b, double best,
+              NodeCounts& counts, bool& irregular);
+
+  const PassageSetup& s_;
+  std::vector<std::size_t> by_line_;  // passes sorted by their line
+  std::vector<PassState> state_;
+  std::vector<Root> fresh_;
+  std::vector<double> roots_;
+};
+
+}  // namespace topomill::plugins
