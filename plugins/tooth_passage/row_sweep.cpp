@@ -38,6 +38,7 @@ RowSweep::RowSweep(const PassageSetup& s) : s_(s), by_line_(s.line.size()), stat
 void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCounts& counts) {
   for (auto& st : state_) {
     st.active = st.have_bottom = false;
+    st.floor_x = NAN;
     for (auto& r : st.roots) r.clear();
   }
   const auto n = static_cast<std::ptrdiff_t>(by_line_.size());
@@ -88,9 +89,24 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
   if (ideal) {
     // The envelope has a single minimum: its bottom, followed from node to node, is the pass's
     // lowest point, and a pass farther out on this side lies higher still.
+    // Along the row the bottom's height changes at the ball's slope across (the envelope
+    // theorem: d/dx of the height at fixed t), so a pass found too high stays too high for a
+    // while without being looked at again (twice the slope, for the slope's own change over
+    // up to a fiftieth of the radius).
+    const double moved = std::abs(x - st.floor_x);
+    if (moved < 0.02 * s_.R && st.floor - st.floor_slope * moved >= best)
+      return can_lower = false, INFINITY;
     t_b = bottom([&](double t) { return geo.envelope(t); }, geo, st, x, y);
     if (std::isnan(t_b)) return INFINITY;
-    if (geo.envelope(t_b) >= best) return can_lower = false, INFINITY;
+    const double low = geo.envelope(t_b);
+    if (low >= best) {
+      const Vec3 c = s_.centre[p](t_b);
+      const double dx = x - c.x(), dy = y - c.y(), r2 = dx * dx + dy * dy;
+      st.floor = low, st.floor_x = x;
+      st.floor_slope = r2 < 0.81 * s_.R2 ? 2 * std::abs(dx) / std::sqrt(s_.R2 - r2)
+                                         : INFINITY;  // near the rim: no bound, look each time
+      return can_lower = false, INFINITY;
+    }
   } else {
     // A corrected envelope wiggles: the reference's own bottom and test decide, after a cheap
     // floor (the correction's whole range) has ruled out the passes that cannot come close.
@@ -116,7 +132,7 @@ template <class F>
 double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x, double y) {
   double t_b = NAN;
   if (st.have_bottom) {
-    const double tp = st.tb + st.tb_drift, w = 0.1 * s_.period;
+    const double tp = st.tb + st.tb_rate * (x - st.tb_x), w = 0.1 * s_.period;
     const double fm = f(tp - w), f0 = f(tp), fp = f(tp + w);
     const double curvature = fp - 2 * f0 + fm;
     if (curvature > 0) {
@@ -130,8 +146,8 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
     const double span = 2 * s_.R / s_.speed;
     t_b = geo.bottom(f, std::max(0.0, t0 - span), std::min(geo.t_end(), t0 + span));
   }
-  st.tb_drift = st.have_bottom ? t_b - st.tb : 0.0;
-  st.tb = t_b, st.have_bottom = true;
+  st.tb_rate = st.have_bottom && x != st.tb_x ? (t_b - st.tb) / (x - st.tb_x) : 0.0;
+  st.tb = t_b, st.tb_x = x, st.have_bottom = true;
   return t_b;
 }
 

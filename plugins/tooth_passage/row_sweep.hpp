@@ -38,7 +38,9 @@ class RowSweep {
   };
   struct PassState {
     bool active = false, have_bottom = false;
-    double rho_lo = 0, rho_hi = 0, tb = 0, tb_drift = 0;
+    double rho_lo = 0, rho_hi = 0;
+    double tb = 0, tb_x = 0, tb_rate = 0;          // last bottom, where, and its rate along x
+    double floor = 0, floor_x = NAN, floor_slope = 0;  // last too-high bottom, where, its slope
     std::vector<std::vector<Root>> roots;  // per tooth, the last node's crossings
   };
 
