@@ -118,8 +118,7 @@ void PassageGeometry::crossings_near(int tooth, double guess, std::vector<double
   }
 }
 
-double PassageGeometry::walk(double t_b, std::vector<double>& roots,
-                             std::uint64_t& visited) const {
+double PassageGeometry::walk(double t_b, std::vector<double>& roots, std::uint64_t& visited) const {
   const double t_end = this->t_end(), rev = s_.rev;
   double best = INFINITY;
   for (int tooth = 0; tooth < s_.teeth; ++tooth) {

@@ -19,7 +19,9 @@ namespace topomill::plugins {
 
 constexpr double kTwoPi = 2 * M_PI;
 
-inline double wrap(double a) { return a - kTwoPi * std::floor(a / kTwoPi + 0.5); }  // (-pi, pi]
+inline double wrap(double a) {
+  return a - kTwoPi * std::floor(a / kTwoPi + 0.5);
+}  // (-pi, pi]
 
 // What every node needs from the tool, the path and the knobs, computed once per evaluation.
 struct PassageSetup {
@@ -36,9 +38,9 @@ struct PassageSetup {
   int iterations, teeth;
   bool along_y;
   std::vector<double> tooth_angle;
-  double sin_tip, lag_tip;            // below the tip angle the lag is held (ToolGeometry)
-  std::vector<CentreTable> centre;    // per pass
-  std::vector<double> line;           // per pass: its nominal x (feeding along Y) or y
+  double sin_tip, lag_tip;          // below the tip angle the lag is held (ToolGeometry)
+  std::vector<CentreTable> centre;  // per pass
+  std::vector<double> line;         // per pass: its nominal x (feeding along Y) or y
   // Per pass, the range of the correction over the pass (zero when ideal): wherever the
   // corrected centre is, it is within [shift_lo, shift_hi] of the nominal one.
   std::vector<Vec3> shift_lo, shift_hi;
@@ -60,8 +62,14 @@ class PassageGeometry {
  public:
   PassageGeometry(const PassageSetup& s, std::size_t pass, double x, double y, double rho_lo,
                   double rho_hi)
-      : s_(s), table_(s.centre[pass]), pass_(pass), x_(x), y_(y), rho_lo_(rho_lo),
-        rho_hi_(rho_hi), phase_(s.path->pass(pass).phase) {}
+      : s_(s),
+        table_(s.centre[pass]),
+        pass_(pass),
+        x_(x),
+        y_(y),
+        rho_lo_(rho_lo),
+        rho_hi_(rho_hi),
+        phase_(s.path->pass(pass).phase) {}
 
   std::size_t pass() const { return pass_; }
   double t_end() const { return s_.path->pass(pass_).t_end; }

@@ -58,8 +58,9 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
     int misses[2] = {0, 0};
     while (left_open || right_open) {
       const bool take_left =
-          !right_open || (left_open && key - s_.line[by_line_[static_cast<std::size_t>(left)]] <=
-                                           s_.line[by_line_[static_cast<std::size_t>(right)]] - key);
+          !right_open ||
+          (left_open && key - s_.line[by_line_[static_cast<std::size_t>(left)]] <=
+                            s_.line[by_line_[static_cast<std::size_t>(right)]] - key);
       std::ptrdiff_t& at = take_left ? left : right;
       bool& open = take_left ? left_open : right_open;
       int& missed = misses[take_left ? 0 : 1];
@@ -154,7 +155,7 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
 double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
                       NodeCounts& counts, bool& irregular) {
   const double rev = s_.rev, t_end = geo.t_end();
-  const double beyond = 0.05 * s_.period;  // how near t_b may be off the envelope's bottom
+  const double beyond = 0.05 * s_.period;      // how near t_b may be off the envelope's bottom
   const bool bounded = best_node > -INFINITY;  // ideal: the envelope has a single minimum
   double best = INFINITY;
   std::uint64_t visited = 0;
@@ -166,7 +167,8 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
     auto solve = [&](double guess, double reach, Probe& q) {
       const Root* match = nullptr;
       for (const Root& r : prev)
-        if (std::abs(r.t + r.drift - guess) < reach) reach = std::abs(r.t + r.drift - guess), match = &r;
+        if (std::abs(r.t + r.drift - guess) < reach)
+          reach = std::abs(r.t + r.drift - guess), match = &r;
       double slope = match ? match->slope : s_.omega;
       const double t = geo.crossing(tooth, match ? match->t + match->drift : guess, slope, q);
       if (!PassageGeometry::converged(q) || q.rho <= s_.near_axis) return double(NAN);

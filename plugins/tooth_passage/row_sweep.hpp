@@ -16,7 +16,7 @@
 namespace topomill::plugins {
 
 struct NodeCounts {
-  std::uint64_t passages = 0;  // tooth passages whose height was read
+  std::uint64_t passages = 0;   // tooth passages whose height was read
   std::uint64_t fallbacks = 0;  // node-pass pairs handed to the reference walk
   std::uint64_t updates = 0;    // nodes lowered
 };
@@ -39,9 +39,9 @@ class RowSweep {
   struct PassState {
     bool active = false, have_bottom = false;
     double rho_lo = 0, rho_hi = 0;
-    double tb = 0, tb_x = 0, tb_rate = 0;          // last bottom, where, and its rate along x
+    double tb = 0, tb_x = 0, tb_rate = 0;              // last bottom, where, and its rate along x
     double floor = 0, floor_x = NAN, floor_slope = 0;  // last too-high bottom, where, its slope
-    std::vector<std::vector<Root>> roots;  // per tooth, the last node's crossings
+    std::vector<std::vector<Root>> roots;              // per tooth, the last node's crossings
   };
 
   double pass_height(std::size_t p, double x, double y, double best, bool& can_lower,

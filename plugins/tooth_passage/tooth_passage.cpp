@@ -8,6 +8,7 @@
 // along a row (row_sweep.hpp); "node" solves each node from scratch (the reference it is tested
 // against). Rows are independent, so any split of rows over threads gives the same bits.
 #include <algorithm>
+#include <atomic>
 #include <thread>
 
 #include "row_sweep.hpp"
@@ -46,22 +47,28 @@ class ToothPassage : public TopographyEvaluator {
     std::vector<NodeCounts> done(threads);
     std::vector<double> xs(g.nx);
     for (std::size_t i = 0; i < g.nx; ++i) xs[i] = g.x(i);
+    std::atomic<std::size_t> next_row{0};
     auto work = [&](unsigned w) {
+      NodeCounts mine;  // counted here, not in done[w]: neighbours in one cache line would
+                        // make the threads take turns
       RowSweep sweep(setup);
       std::vector<std::pair<double, std::size_t>> order;
       std::vector<double> roots;
-      for (std::size_t j = w; j < g.ny && !rq.stopped(); j += threads) {
+      // Rows are handed out one at a time, so that a thread slowed by anything else on the
+      // machine takes fewer; each row is computed alone, so the bits do not depend on who.
+      for (std::size_t j = next_row++; j < g.ny && !rq.stopped(); j = next_row++) {
         double* z = &map.at(0, j);
         if (by_row_) {
-          sweep.row(g.y(j), xs, z, done[w]);
+          sweep.row(g.y(j), xs, z, mine);
         } else {
           for (std::size_t i = 0; i < g.nx; ++i) {
-            const double low = node_height_reference(setup, xs[i], g.y(j), done[w], order, roots);
-            if (low < z[i]) z[i] = low, ++done[w].updates;
+            const double low = node_height_reference(setup, xs[i], g.y(j), mine, order, roots);
+            if (low < z[i]) z[i] = low, ++mine.updates;
           }
         }
         if (w == 0 && rq.progress) rq.progress(static_cast<double>(j) / g.ny);
       }
+      done[w] = mine;
     };
     std::vector<std::thread> pool;
     for (unsigned w = 1; w < threads; ++w) pool.emplace_back(work, w);

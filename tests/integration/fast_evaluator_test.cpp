@@ -134,14 +134,14 @@ TEST_CASE("the row walk gives the node walk's heights", "[fast][reference]") {
     std::vector<std::string> overrides;
     std::string extra;
   };
-  const Case c = GENERATE_COPY(
-      Case{"tip", 0.0, {}, ""}, Case{"paper slope", 30.0, {}, ""}, Case{"steep", 60.0, {}, ""},
-      Case{"across", 30.0, {"path.strategy=raster_across"}, ""},
-      Case{"four teeth, constant lead",
-           30.0,
-           {"tool.plugin=ball_end_constant_lead", "tool.teeth=4"},
-           ""},
-      Case{"vibration and deflection", 30.0, {}, dynamics});
+  const Case c = GENERATE_COPY(Case{"tip", 0.0, {}, ""}, Case{"paper slope", 30.0, {}, ""},
+                               Case{"steep", 60.0, {}, ""},
+                               Case{"across", 30.0, {"path.strategy=raster_across"}, ""},
+                               Case{"four teeth, constant lead",
+                                    30.0,
+                                    {"tool.plugin=ball_end_constant_lead", "tool.teeth=4"},
+                                    ""},
+                               Case{"vibration and deflection", 30.0, {}, dynamics});
   INFO(c.name);
   const std::string scene = paper_scene(kConvex, c.lambda, 0.35, 0.35, 0.01) + c.extra;
   auto with = [&](const char* walk) {

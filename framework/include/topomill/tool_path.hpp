@@ -66,7 +66,6 @@ class TOPOMILL_API ToolPath {
   double max_correction() const { return max_correction_; }
 
  private:
-
   std::shared_ptr<const SurfaceShape> surface_;
   double offset_, feed_speed_, spindle_rate_;
   std::vector<Pass> passes_;
