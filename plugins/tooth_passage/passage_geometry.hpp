@@ -19,9 +19,10 @@ namespace topomill::plugins {
 
 constexpr double kTwoPi = 2 * M_PI;
 
+// To (-pi, pi].
 inline double wrap(double a) {
   return a - kTwoPi * std::floor(a / kTwoPi + 0.5);
-}  // (-pi, pi]
+}
 
 // What every node needs from the tool, the path and the knobs, computed once per evaluation.
 struct PassageSetup {
