@@ -124,9 +124,8 @@ double PassageGeometry::walk(double t_b, std::vector<double>& roots, std::uint64
   for (int tooth = 0; tooth < s_.teeth; ++tooth) {
     const double t_first = crossing(tooth, t_b);
     for (int dir : {+1, -1}) {
-      double last = INFINITY;
-      int rising = 0;
-      for (int m = (dir > 0 ? 0 : 1); m < 100000 && rising < 2; ++m) {
+      RiseCount rise;
+      for (int m = (dir > 0 ? 0 : 1); m < 100000 && !rise.done(); ++m) {
         const double guess = t_first + dir * m * rev;
         if (guess < -rev / 2 || guess > t_end + rev / 2) break;
         crossings_near(tooth, guess, roots);
@@ -139,12 +138,7 @@ double PassageGeometry::walk(double t_b, std::vector<double>& roots, std::uint64
           if (q.over) best = std::min(best, q.height);
           lowest = std::min(lowest, q.height);
         }
-        if (!std::isfinite(lowest)) {  // off the ball: past the node
-          if (++rising >= 2) break;
-          continue;
-        }
-        rising = lowest > last ? rising + 1 : 0;
-        last = lowest;
+        rise.add(lowest);
       }
     }
   }

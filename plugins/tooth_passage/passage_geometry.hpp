@@ -52,6 +52,23 @@ struct PassageSetup {
   std::pair<double, double> contact_radii(std::size_t p, double t) const;
 };
 
+// When a walk in one direction ends: after two passages in a row each higher than the one
+// before, or off the ball (past the node). Both walks stop by it, so they stop alike.
+class RiseCount {
+ public:
+  void add(double lowest) {
+    if (!std::isfinite(lowest))
+      ++count_;
+    else
+      count_ = lowest > last_ ? count_ + 1 : 0, last_ = lowest;
+  }
+  bool done() const { return count_ >= 2; }
+
+ private:
+  double last_ = INFINITY;
+  int count_ = 0;
+};
+
 struct Probe {
   bool over;      // under the ball, inside the contact range
   double g;       // edge azimuth minus node azimuth, wrapped
@@ -132,12 +149,15 @@ class PassageGeometry {
     }
     return 0.5 * (a + b);
   }
-  // The envelope's bottom within the travel of a ball's diameter either side of t0 (the
-  // reference's choice).
-  double bottom_near(double t0) const {
+  // The bottom of `f` within the travel of a ball's diameter either side of t0 (the
+  // reference's window); of the envelope when no `f` is given.
+  template <class F>
+  double bottom_near(F f, double t0) const {
     const double span = 2 * s_.R / s_.speed;
-    return bottom([this](double t) { return envelope(t); }, std::max(0.0, t0 - span),
-                  std::min(t_end(), t0 + span));
+    return bottom(f, std::max(0.0, t0 - span), std::min(t_end(), t0 + span));
+  }
+  double bottom_near(double t0) const {
+    return bottom_near([this](double t) { return envelope(t); }, t0);
   }
 
   // All crossings of one tooth within half a revolution of `guess`, robustly (see .cpp).

@@ -42,6 +42,9 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
     for (auto& r : st.roots) r.clear();
   }
   const auto n = static_cast<std::ptrdiff_t>(by_line_.size());
+  // A pass that cannot lower the node ends its side; with a correction (each pass has its own),
+  // only the second in a row does.
+  const int misses_to_stop = s_.path->corrected() ? 2 : 1;
   for (std::size_t i = 0; i < xs.size(); ++i) {
     const double x = xs[i], key = s_.along_y ? x : y;
     // Passes nearest first, outwards on both sides.
@@ -52,9 +55,6 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
     std::ptrdiff_t left = right - 1;
     bool left_open = left >= 0, right_open = right < n;
     double best = INFINITY;
-    // A pass that cannot lower the node ends its side; with a correction (each pass has its
-    // own), only the second in a row does.
-    const int misses_to_stop = s_.path->corrected() ? 2 : 1;
     int misses[2] = {0, 0};
     while (left_open || right_open) {
       const bool take_left =
@@ -78,10 +78,12 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
 double RowSweep::pass_height(std::size_t p, double x, double y, double best, bool& can_lower,
                              NodeCounts& counts) {
   PassState& st = state_[p];
+  // The pass's level time is needed only off the fast path: found at most once.
+  double level = -INFINITY;
+  auto t0 = [&] { return level == -INFINITY ? level = s_.level_time(p, x, y) : level; };
   if (!st.active) {
-    const double t0 = s_.level_time(p, x, y);
-    if (std::isnan(t0)) return INFINITY;  // never level with this node: look further
-    const auto radii = s_.contact_radii(p, t0);
+    if (std::isnan(t0())) return INFINITY;  // never level with this node: look further
+    const auto radii = s_.contact_radii(p, t0());
     st.rho_lo = radii.first, st.rho_hi = radii.second, st.active = true;
   }
   const PassageGeometry geo(s_, p, x, y, st.rho_lo, st.rho_hi);
@@ -97,7 +99,7 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
     const double moved = std::abs(x - st.floor_x);
     if (moved < 0.02 * s_.R && st.floor - st.floor_slope * moved >= best)
       return can_lower = false, INFINITY;
-    t_b = bottom([&](double t) { return geo.envelope(t); }, geo, st, x, y);
+    t_b = bottom([&](double t) { return geo.envelope(t); }, geo, st, x, t0);
     if (std::isnan(t_b)) return INFINITY;
     const double low = geo.envelope(t_b);
     if (low >= best) {
@@ -111,26 +113,27 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
   } else {
     // A corrected envelope wiggles: the reference's own bottom and test decide, after a cheap
     // floor (the correction's whole range) has ruled out the passes that cannot come close.
-    const double t_f = bottom([&](double t) { return geo.floor_envelope(t); }, geo, st, x, y);
+    const double t_f = bottom([&](double t) { return geo.floor_envelope(t); }, geo, st, x, t0);
     if (std::isnan(t_f)) return INFINITY;
     if (geo.floor_envelope(t_f) - 1e-9 >= best) return can_lower = false, INFINITY;
-    t_b = geo.bottom_near(s_.level_time(p, x, y));
+    t_b = geo.bottom_near(t0());
     if (geo.envelope(t_b) >= best) return INFINITY;
   }
   bool irregular = false;
   const double h = walk(geo, st, t_b, ideal ? best : -INFINITY, counts, irregular);
   if (!irregular) return h;
-  // The reference's own walk, from the reference's own bottom, so that the result is its.
+  // The reference's own walk, from the reference's own bottom (which the corrected branch has
+  // already), so that the result is its.
   ++counts.fallbacks;
   for (auto& r : st.roots) r.clear();
-  return geo.walk(geo.bottom_near(s_.level_time(p, x, y)), roots_, counts.passages);
+  return geo.walk(ideal ? geo.bottom_near(t0()) : t_b, roots_, counts.passages);
 }
 
 // The bottom moves little from one node to the next: a parabola through three heights around
 // the predicted bottom finds it; the golden section over the reference's window when that fails
 // (first node of the row, or a function that is not convex there).
-template <class F>
-double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x, double y) {
+template <class F, class T0>
+double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x, T0 t0) {
   double t_b = NAN;
   if (st.have_bottom) {
     const double tp = st.tb + st.tb_rate * (x - st.tb_x), w = 0.1 * s_.period;
@@ -142,10 +145,8 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
     }
   }
   if (std::isnan(t_b)) {
-    const double t0 = s_.level_time(geo.pass(), x, y);
-    if (std::isnan(t0)) return NAN;
-    const double span = 2 * s_.R / s_.speed;
-    t_b = geo.bottom(f, std::max(0.0, t0 - span), std::min(geo.t_end(), t0 + span));
+    if (std::isnan(t0())) return NAN;
+    t_b = geo.bottom_near(f, t0());
   }
   st.tb_rate = st.have_bottom && x != st.tb_x ? (t_b - st.tb) / (x - st.tb_x) : 0.0;
   st.tb = t_b, st.tb_x = x, st.have_bottom = true;
@@ -180,9 +181,9 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
     const double t_first = solve(t_b, bounded ? 0.75 * rev : 0.0, first);
     if (std::isnan(t_first)) return irregular = true, INFINITY;
     for (int dir : {+1, -1}) {
-      double last = INFINITY, t_prev = t_first;
-      int rising = 0;
-      for (int m = (dir > 0 ? 0 : 1); m < 100000 && rising < 2; ++m) {
+      double t_prev = t_first;
+      RiseCount rise;
+      for (int m = (dir > 0 ? 0 : 1); m < 100000 && !rise.done(); ++m) {
         double t = t_first;
         Probe q = first;
         if (m > 0) {
@@ -207,12 +208,7 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
             lowest = q.height;
           }
         }
-        if (!std::isfinite(lowest)) {  // off the ball: past the node
-          if (++rising >= 2) break;
-          continue;
-        }
-        rising = lowest > last ? rising + 1 : 0;
-        last = lowest;
+        rise.add(lowest);
       }
     }
     std::sort(fresh_.begin(), fresh_.end(), [](const Root& a, const Root& b) { return a.t < b.t; });

@@ -46,8 +46,9 @@ class RowSweep {
 
   double pass_height(std::size_t p, double x, double y, double best, bool& can_lower,
                      NodeCounts& counts);
-  template <class F>
-  double bottom(F f, const PassageGeometry& geo, PassState& st, double x, double y);
+  // t0() gives the pass's level time (computed when first asked).
+  template <class F, class T0>
+  double bottom(F f, const PassageGeometry& geo, PassState& st, double x, T0 t0);
   double walk(const PassageGeometry& geo, PassState& st, double t_b, double best,
               NodeCounts& counts, bool& irregular);
 
