@@ -11,20 +11,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "passage_geometry.hpp"
+#include "node_walk.hpp"
 
 namespace topomill::plugins {
-
-struct NodeCounts {
-  std::uint64_t passages = 0;   // tooth passages whose height was read
-  std::uint64_t fallbacks = 0;  // node-pass pairs handed to the reference walk
-  std::uint64_t updates = 0;    // nodes lowered
-};
-
-// The reference: each node from scratch, every pass within reach (golden-section bottom).
-double node_height_reference(const PassageSetup& s, double x, double y, NodeCounts& counts,
-                             std::vector<std::pair<double, std::size_t>>& order,
-                             std::vector<double>& roots);
 
 class RowSweep {
  public:

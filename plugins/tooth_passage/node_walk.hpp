@@ -1,0 +1,27 @@
+// The reference walk: each node from scratch, every pass within reach, the envelope's bottom by
+// golden section, passages visited outwards until heights rise twice. The row walk
+// (row_sweep.hpp) must give its heights.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "passage_geometry.hpp"
+
+namespace topomill::plugins {
+
+// Work done by one thread, added up at the end (summary.json's work counts).
+struct NodeCounts {
+  std::uint64_t passages = 0;   // tooth passages whose height was read
+  std::uint64_t fallbacks = 0;  // node-pass pairs handed to the reference walk
+  std::uint64_t updates = 0;    // nodes lowered
+};
+
+// The lowest edge height over (x, y), +inf if none; `order` and `roots` are the caller's
+// scratch, so that a node allocates nothing.
+double node_height_reference(const PassageSetup& s, double x, double y, NodeCounts& counts,
+                             std::vector<std::pair<double, std::size_t>>& order,
+                             std::vector<double>& roots);
+
+}  // namespace topomill::plugins
