@@ -1,7 +1,10 @@
 #include "pipeline.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <thread>
 
 #include "form_removal.hpp"
 #include "interrupt.hpp"
@@ -122,8 +125,8 @@ std::function<bool(const Vec3&)> material_test(const ToolPath& path, std::size_t
 
 // Forces on a time grid chosen for the dynamics, the response, the deformations, and their sum
 // as the path correction TC (Eq. 32-33). Each pass starts from rest.
-static void apply_effects(const Scene& scene, const Prepared& m, StageClock& clock,
-                          RunResult& result) {
+static void apply_effects(const Scene& scene, const Prepared& m, unsigned threads,
+                          StageClock& clock, RunResult& result) {
   const Layout& L = m.layout;
   ToolPath& path = *L.path;
   const Params& cut = scene.table("cutting");
@@ -133,28 +136,52 @@ static void apply_effects(const Scene& scene, const Prepared& m, StageClock& clo
   std::vector<std::vector<CutState>> states(path.passes());
   std::vector<std::vector<CuttingForce>> forces(path.passes());
   clock.run("force", [&] {
+    // A sample's state and force depend on its time only (the force sees the nominal cut, not
+    // the vibration): blocks of samples are shared among threads and the result does not depend
+    // on how. An error is reported from the earliest block that raised one, as one thread would.
+    constexpr std::size_t kBlock = 1024;
+    std::vector<std::pair<std::size_t, std::size_t>> blocks;  // (pass, first sample)
     for (std::size_t p = 0; p < path.passes(); ++p) {
-      throw_if_interrupted();
       const auto n = static_cast<std::size_t>(std::ceil(path.pass(p).t_end / dt)) + 1;
-      for (std::size_t k = 0; k < n; ++k) {
-        if (k % 1024 == 0) throw_if_interrupted();  // a pass can take seconds
-        CutState st;
-        st.time = static_cast<double>(k) * dt;
-        st.spindle_angle = path.spindle_angle(p, st.time);
-        st.feed_direction = path.feed_direction(p, st.time);
-        st.feed_per_tooth = cut.number("feed_per_tooth");
-        st.inclination = path.surface().inclination(path.surface_y(p, st.time));
-        st.alpha_min = std::max(0.0, std::abs(st.inclination) - L.kappa);
-        st.alpha_max = std::min(M_PI / 2, std::abs(st.inclination) + L.kappa);
-        st.spindle_rate = path.spindle_rate();
-        st.depth_of_cut = cut.number("depth_of_cut");
-        st.stepover = cut.number("stepover");
-        st.in_material = material_test(path, p, st, m.tool->radius());
-        states[p].push_back(st);
-        forces[p].push_back(
-            in_table(scene.slot("force"), [&] { return m.force->evaluate(*m.tool, st); }));
-      }
+      states[p].resize(n), forces[p].resize(n);
+      for (std::size_t k = 0; k < n; k += kBlock) blocks.emplace_back(p, k);
     }
+    auto sample = [&](std::size_t p, std::size_t k) {
+      CutState& st = states[p][k];
+      st.time = static_cast<double>(k) * dt;
+      st.spindle_angle = path.spindle_angle(p, st.time);
+      st.feed_direction = path.feed_direction(p, st.time);
+      st.feed_per_tooth = cut.number("feed_per_tooth");
+      st.inclination = path.surface().inclination(path.surface_y(p, st.time));
+      st.alpha_min = std::max(0.0, std::abs(st.inclination) - L.kappa);
+      st.alpha_max = std::min(M_PI / 2, std::abs(st.inclination) + L.kappa);
+      st.spindle_rate = path.spindle_rate();
+      st.depth_of_cut = cut.number("depth_of_cut");
+      st.stepover = cut.number("stepover");
+      st.in_material = material_test(path, p, st, m.tool->radius());
+      forces[p][k] = in_table(scene.slot("force"), [&] { return m.force->evaluate(*m.tool, st); });
+    };
+    std::vector<std::exception_ptr> errors(blocks.size());
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+      for (std::size_t b = next++; b < blocks.size(); b = next++) {
+        try {
+          throw_if_interrupted();  // a pass can take seconds
+          const auto [p, first] = blocks[b];
+          for (std::size_t k = first; k < std::min(first + kBlock, states[p].size()); ++k)
+            sample(p, k);
+        } catch (...) {
+          errors[b] = std::current_exception();
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned w = 1; w < std::min<std::size_t>(threads, blocks.size()); ++w)
+      pool.emplace_back(work);
+    work();
+    for (auto& t : pool) t.join();
+    for (const auto& e : errors)
+      if (e) std::rethrow_exception(e);
     std::uint64_t samples = 0;
     for (const auto& pass : states) samples += pass.size();
     result.work["force_samples"] = samples;
@@ -217,7 +244,7 @@ RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog,
 
   Prepared m = clock.run("setup", [&] { return prepare(scene, catalog, options.threads); });
   throw_if_interrupted();
-  if (m.force) apply_effects(scene, m, clock, result);
+  if (m.force) apply_effects(scene, m, options.threads, clock, result);
   throw_if_interrupted();
   result.layout = m.layout;
   const Layout& L = result.layout;
