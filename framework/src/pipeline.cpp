@@ -146,18 +146,20 @@ static void apply_effects(const Scene& scene, const Prepared& m, unsigned thread
       states[p].resize(n), forces[p].resize(n);
       for (std::size_t k = 0; k < n; k += kBlock) blocks.emplace_back(p, k);
     }
+    const double fz = cut.number("feed_per_tooth"), ap = cut.number("depth_of_cut"),
+                 ae = cut.number("stepover");
     auto sample = [&](std::size_t p, std::size_t k) {
       CutState& st = states[p][k];
       st.time = static_cast<double>(k) * dt;
       st.spindle_angle = path.spindle_angle(p, st.time);
       st.feed_direction = path.feed_direction(p, st.time);
-      st.feed_per_tooth = cut.number("feed_per_tooth");
+      st.feed_per_tooth = fz;
       st.inclination = path.surface().inclination(path.surface_y(p, st.time));
       st.alpha_min = std::max(0.0, std::abs(st.inclination) - L.kappa);
       st.alpha_max = std::min(M_PI / 2, std::abs(st.inclination) + L.kappa);
       st.spindle_rate = path.spindle_rate();
-      st.depth_of_cut = cut.number("depth_of_cut");
-      st.stepover = cut.number("stepover");
+      st.depth_of_cut = ap;
+      st.stepover = ae;
       st.in_material = material_test(path, p, st, m.tool->radius());
       forces[p][k] = in_table(scene.slot("force"), [&] { return m.force->evaluate(*m.tool, st); });
     };
