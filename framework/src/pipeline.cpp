@@ -114,10 +114,10 @@ std::function<bool(const Vec3&)> material_test(const ToolPath& path, std::size_t
   const Vec3 back = st.stepover * step;
   const SurfaceShape* surface = &path.surface();
   return [=](const Vec3& offset) {
+    const Vec3 q = offset + back;  // the cheaper test first
+    if ((q - q.dot(feed) * feed).squaredNorm() < R * R) return false;
     const Vec3 point = centre + offset;
-    if (surface->normal_residual(point.y(), point.z(), 0.0) >= 0) return false;
-    const Vec3 q = offset + back;
-    return (q - q.dot(feed) * feed).squaredNorm() >= R * R;
+    return surface->normal_residual(point.y(), point.z(), 0.0) < 0;
   };
 }
 

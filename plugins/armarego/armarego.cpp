@@ -1,5 +1,6 @@
 // Mechanistic ball-end cutting force (Armarego; Lee and Altintas form), MODEL.md Eq. 18-21.
 #include <cmath>
+#include <vector>
 
 #include "topomill/force_model.hpp"
 #include "topomill/plugin.hpp"
@@ -39,25 +40,47 @@ class Armarego : public ForceModel {
         kae_(p.number("Kae")),
         elements_(static_cast<int>(p.integer("elements"))) {}
 
+  // Per element the polar angle's sine and cosine (stepped by rotation), the lag and its
+  // sine and cosine are shared by all teeth; each tooth's azimuth is then a rotation of its own
+  // angle at this instant, so a sample costs the lag (a log for the loxodrome) and one sincos
+  // per element, not a sincos, a tan, a log, a sin and a sincos per element and tooth.
   CuttingForce evaluate(const ToolGeometry& tool, const CutState& st) const override {
     const double R = tool.radius();
     const double da = (st.alpha_max - st.alpha_min) / elements_;
     const double sense = st.spindle_rate >= 0 ? 1.0 : -1.0;
+    const double tip = tool.min_polar_angle(), lag_tip = tool.lag(tip),
+                 slope_tip = tool.lag_slope(tip);
+    const int teeth = tool.teeth();
+    std::vector<double> tooth_cos(static_cast<std::size_t>(teeth)), tooth_sin(tooth_cos.size());
+    for (int j = 0; j < teeth; ++j) {
+      const double angle = tool.tooth_angle(j) + st.spindle_angle;
+      tooth_cos[static_cast<std::size_t>(j)] = std::cos(angle);
+      tooth_sin[static_cast<std::size_t>(j)] = std::sin(angle);
+    }
+    const double a0 = st.alpha_min + 0.5 * da;  // midpoint rule
+    const double step_c = std::cos(da), step_s = std::sin(da);
+    double sa = std::sin(a0), ca = std::cos(a0);
     CuttingForce out;
     double weight = 0, moment = 0;
-    for (int j = 0; j < tool.teeth(); ++j) {
-      for (int e = 0; e < elements_; ++e) {
-        const double a = st.alpha_min + (e + 0.5) * da;  // midpoint rule
-        const double phi =
-            tool.tooth_angle(j) + tool.lag(std::max(a, tool.min_polar_angle())) + st.spindle_angle;
-        const double sa = std::sin(a), ca = std::cos(a), sp = std::sin(phi), cp = std::cos(phi);
+    for (int e = 0; e < elements_; ++e) {
+      if (e > 0) {
+        const double s_next = sa * step_c + ca * step_s;
+        ca = ca * step_c - sa * step_s, sa = s_next;
+      }
+      const double a = a0 + e * da;
+      const bool held = a < tip;  // the tip's stretch, where the lag is held
+      const double lag = held ? lag_tip : tool.lag_sc(sa, ca);
+      const double cl = std::cos(lag), sl = std::sin(lag);
+      const double db = R * da;
+      const double slope = sa * (held ? slope_tip : tool.lag_slope_sc(sa, ca));
+      const double ds = db * std::sqrt(1 + slope * slope);
+      for (std::size_t j = 0; j < tooth_cos.size(); ++j) {
+        const double cp = tooth_cos[j] * cl - tooth_sin[j] * sl;
+        const double sp = tooth_sin[j] * cl + tooth_cos[j] * sl;
         const Vec3 n(sa * cp, sa * sp, -ca), m(ca * cp, ca * sp, sa), v(-sense * sp, sense * cp, 0);
         const double t = st.feed_per_tooth * st.feed_direction.dot(n);
         if (t <= 0) continue;  // not in cut: the element faces away from the feed
         if (st.in_material && !st.in_material(R * n)) continue;  // air: above or already cut
-        const double db = R * da;
-        const double slope = sa * tool.lag_slope(std::max(a, tool.min_polar_angle()));
-        const double ds = db * std::sqrt(1 + slope * slope);
         const double ft = kte_ * ds + ktc_ * t * db, fr = kre_ * ds + krc_ * t * db,
                      fa = kae_ * ds + kac_ * t * db;
         const Vec3 f = -ft * v - fr * n - fa * m;

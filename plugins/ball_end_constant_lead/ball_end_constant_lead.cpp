@@ -20,6 +20,7 @@ class BallEndConstantLead : public BallEnd {
   double lag(double alpha) const override { return tan_helix_ * std::cos(alpha); }
   double lag_sc(double, double cos_alpha) const override { return tan_helix_ * cos_alpha; }
   double lag_slope(double alpha) const override { return -tan_helix_ * std::sin(alpha); }
+  double lag_slope_sc(double sin_alpha, double) const override { return -tan_helix_ * sin_alpha; }
 };
 
 }  // namespace topomill::plugins

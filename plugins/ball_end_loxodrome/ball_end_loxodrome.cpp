@@ -34,6 +34,7 @@ class BallEndLoxodrome : public BallEnd {
     return tan_helix_ * std::log((1.0 + cos_alpha) / sin_alpha);
   }
   double lag_slope(double alpha) const override { return -tan_helix_ / std::sin(alpha); }
+  double lag_slope_sc(double sin_alpha, double) const override { return -tan_helix_ / sin_alpha; }
   double min_polar_angle() const override { return tip_angle_; }
 
  private:

@@ -25,7 +25,7 @@ class ConcaveArc : public SurfaceShape {
   double y_at_inclination(double lambda) const override { return -r_ * std::sin(lambda); }
   double curvature_radius() const override { return -r_; }
   double normal_residual(double y, double z, double depth) const override {
-    return (r_ + depth) - std::hypot(y, r_ - z);
+    return (r_ + depth) - std::sqrt(y * y + (r_ - z) * (r_ - z));
   }
   double arc_coordinate(double y, double z) const override { return r_ * std::atan2(y, r_ - z); }
   double y_min() const override { return -r_; }

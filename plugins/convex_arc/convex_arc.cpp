@@ -24,7 +24,7 @@ class ConvexArc : public SurfaceShape {
   double y_at_inclination(double lambda) const override { return r_ * std::sin(lambda); }
   double curvature_radius() const override { return r_; }
   double normal_residual(double y, double z, double depth) const override {
-    return std::hypot(y, z + r_) - (r_ - depth);
+    return std::sqrt(y * y + (z + r_) * (z + r_)) - (r_ - depth);
   }
   double arc_coordinate(double y, double z) const override { return r_ * std::atan2(y, z + r_); }
   double y_min() const override { return -r_; }

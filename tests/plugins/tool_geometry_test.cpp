@@ -23,6 +23,20 @@ TEST_CASE("lag angles at alpha = 10 deg, helix 30 deg, match MODEL.md", "[tool]"
   CHECK(lead->lag(90 * kDeg) == Approx(0).margin(1e-12));
 }
 
+TEST_CASE("the closed forms in sin and cos agree with lag and lag_slope", "[tool]") {
+  // The fast evaluator and the force model call lag_sc and lag_slope_sc instead of lag and
+  // lag_slope; an override that drifted from its function would change every surface silently.
+  for (const std::string name : {"ball_end_loxodrome", "ball_end_constant_lead"}) {
+    auto tool = make_model<ToolGeometry>(name, {{"radius", 5}, {"helix_angle", 30}});
+    for (double a : {0.001, 0.05, 0.3, 0.7, 1.2, M_PI / 2}) {
+      INFO(name << " at alpha " << a);
+      CHECK(tool->lag_sc(std::sin(a), std::cos(a)) == Approx(tool->lag(a)).margin(1e-13));
+      CHECK(tool->lag_slope_sc(std::sin(a), std::cos(a)) ==
+            Approx(tool->lag_slope(a)).epsilon(1e-13));
+    }
+  }
+}
+
 TEST_CASE("every edge point lies on the ball and teeth are evenly spaced", "[tool]") {
   for (const std::string name : {"ball_end_loxodrome", "ball_end_constant_lead"}) {
     auto tool = make_model<ToolGeometry>(name, {{"radius", 5}, {"teeth", 3}, {"helix_angle", 30}});

@@ -20,6 +20,8 @@ class TOPOMILL_API ToolGeometry : public Model {
   // under the ball gives both from a square root; asin would cost more than the rest).
   // Override with a closed form where one exists; must agree with lag(alpha).
   virtual double lag_sc(double sin_alpha, double cos_alpha) const;
+  // The same for lag_slope (the force model needs it per edge element and sample).
+  virtual double lag_slope_sc(double sin_alpha, double cos_alpha) const;
   // Smallest polar angle at which the edge may be evaluated (rad). An edge whose lag is singular
   // at the tip (the loxodrome) returns a positive value; callers treat [0, min) as the tip point.
   virtual double min_polar_angle() const { return 0.0; }
