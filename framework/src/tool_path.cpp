@@ -33,13 +33,7 @@ Vec3 ToolPath::nominal_centre(std::size_t p, double t) const {
 }
 
 Vec3 ToolPath::correction(std::size_t p, double t) const {
-  const Samples& s = corrections_[p];
-  if (s.values.empty()) return Vec3::Zero();
-  const double u = std::max(0.0, t / s.dt);
-  const std::size_t k = static_cast<std::size_t>(u);
-  if (k + 1 >= s.values.size()) return s.values.back();
-  const double w = u - static_cast<double>(k);
-  return (1.0 - w) * s.values[k] + w * s.values[k + 1];
+  return corrections_[p].at(t);
 }
 
 Vec3 ToolPath::centre(std::size_t p, double t) const {
@@ -49,7 +43,7 @@ Vec3 ToolPath::centre(std::size_t p, double t) const {
 void ToolPath::set_correction(std::size_t p, double dt, std::vector<Vec3> samples) {
   for (const auto& v : samples)
     max_correction_ = std::max(max_correction_, v.cwiseAbs().maxCoeff());
-  corrections_[p] = Samples{dt, std::move(samples)};
+  corrections_[p] = Correction{dt, std::move(samples)};
   corrected_ = true;
 }
 

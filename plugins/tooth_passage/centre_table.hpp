@@ -17,7 +17,7 @@ class CentreTable {
  public:
   // Covers [t_lo, t_hi]; outside it the path is asked directly.
   CentreTable(const ToolPath& path, std::size_t pass, double t_lo, double t_hi, double tolerance)
-      : path_(&path), pass_(pass), corrected_(path.corrected()) {
+      : path_(&path), pass_(pass), correction_(&path.correction_samples(pass)) {
     double dt = std::max((t_hi - t_lo) / 16, 1e-9);
     for (int attempt = 0; attempt < 40; ++attempt, dt /= 2) {
       build(t_lo, t_hi, dt);
@@ -28,7 +28,7 @@ class CentreTable {
 
   Vec3 operator()(double t) const {
     Vec3 c = nominal(t);
-    if (corrected_) c += path_->correction(pass_, t);
+    if (!correction_->values.empty()) c += correction_->at(t);
     return c;
   }
 
@@ -67,7 +67,7 @@ class CentreTable {
 
   const ToolPath* path_;
   std::size_t pass_;
-  bool corrected_;
+  const ToolPath::Correction* correction_;
   double t0_ = 0, inv_dt_ = 1;
   std::vector<Vec3> knots_;
 };

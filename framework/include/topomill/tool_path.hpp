@@ -2,6 +2,7 @@
 // plus the dynamic correction TC of Eq. 32-33. Owned by the core, read by evaluators.
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -52,8 +53,23 @@ class TOPOMILL_API ToolPath {
   // The correction alone (zero when uncorrected), so that an evaluator can tabulate the smooth
   // nominal part and add this piecewise-linear part exactly.
   Vec3 correction(std::size_t p, double t) const;
-  // Time between the correction's samples of pass p (0 when it has none): between them it is
-  // linear, so its extremes over any span are at samples or at the span's ends.
+  // The correction of one pass: sampled every `dt` from t = 0 (none when uncorrected), linear
+  // between samples (so its extremes over any span are at samples or at the span's ends), held
+  // beyond the last. Inline, so that an evaluator's inner loop can call it.
+  struct Correction {
+    double dt = 0.0;
+    std::vector<Vec3> values;
+    Vec3 at(double t) const {
+      if (values.empty()) return Vec3::Zero();
+      const double u = std::max(0.0, t / dt);
+      const std::size_t k = static_cast<std::size_t>(u);
+      if (k + 1 >= values.size()) return values.back();
+      const double w = u - static_cast<double>(k);
+      return (1.0 - w) * values[k] + w * values[k + 1];
+    }
+  };
+  const Correction& correction_samples(std::size_t p) const { return corrections_[p]; }
+  // Time between the correction's samples of pass p (0 when it has none).
   double correction_step(std::size_t p) const { return corrections_[p].dt; }
   double spindle_angle(std::size_t p, double t) const {
     return passes_[p].phase + spindle_rate_ * t;
@@ -70,11 +86,7 @@ class TOPOMILL_API ToolPath {
   double offset_, feed_speed_, spindle_rate_;
   std::vector<Pass> passes_;
   FeedAxis axis_;
-  struct Samples {
-    double dt = 0.0;
-    std::vector<Vec3> values;
-  };
-  std::vector<Samples> corrections_;
+  std::vector<Correction> corrections_;
   bool corrected_ = false;
   double max_correction_ = 0.0;
 };
