@@ -27,4 +27,42 @@ double node_height_reference(const PassageSetup& s, double x, double y, NodeCoun
   return best;
 }
 
+double node_height_scan(const PassageSetup& s, double x, double y, double step,
+                        NodeCounts& counts) {
+  double best = INFINITY;
+  for (std::size_t p = 0; p < s.line.size(); ++p) {
+    if (std::abs((s.along_y ? x : y) - s.line[p]) >= s.reach) continue;
+    const double t0 = s.level_time(p, x, y);
+    if (std::isnan(t0)) continue;
+    const auto radii = s.contact_radii(p, t0);
+    const PassageGeometry geo(s, p, x, y, radii.first, radii.second);
+    // The centre moves along the feed at least at the feed speed: farther than this from t0 it
+    // is more than `reach` away.
+    const double ta = std::max(0.0, t0 - s.reach / s.speed);
+    const double tb = std::min(geo.t_end(), t0 + s.reach / s.speed);
+    for (int tooth = 0; tooth < s.teeth; ++tooth) {
+      double t_prev = ta, g_prev = geo.probe(tooth, ta).g;
+      for (double t = ta + step; t_prev < tb; t += step) {
+        t = std::min(t, tb);
+        const double g = geo.probe(tooth, t).g;
+        if ((g < 0) != (g_prev < 0) && std::abs(g - g_prev) < M_PI) {  // not the wrap at pi
+          double lo = t_prev, hi = t, g_lo = g_prev;
+          for (int it = 0; it < 200 && hi - lo > 1e-13 * s.rev; ++it) {
+            const double mid = 0.5 * (lo + hi), g_mid = geo.probe(tooth, mid).g;
+            if ((g_mid < 0) == (g_lo < 0))
+              lo = mid, g_lo = g_mid;
+            else
+              hi = mid;
+          }
+          const Probe q = geo.probe(tooth, 0.5 * (lo + hi));
+          ++counts.passages;
+          if (q.over && std::isfinite(q.height)) best = std::min(best, q.height);
+        }
+        t_prev = t, g_prev = g;
+      }
+    }
+  }
+  return best;
+}
+
 }  // namespace topomill::plugins

@@ -24,4 +24,11 @@ double node_height_reference(const PassageSetup& s, double x, double y, NodeCoun
                              std::vector<std::pair<double, std::size_t>>& order,
                              std::vector<double>& roots);
 
+// The same by brute force, to check the walks' stopping rules: every pass within reach, every
+// tooth, g sampled every `step` seconds over all the time the ball can be over the node, each
+// sign change bisected. Finds every crossing (several per passage too, where a fast correction
+// turns the node's azimuth back) whose roots lie more than a step apart. Thousands of times
+// slower than the walks.
+double node_height_scan(const PassageSetup& s, double x, double y, double step, NodeCounts& counts);
+
 }  // namespace topomill::plugins

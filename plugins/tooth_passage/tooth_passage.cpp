@@ -9,6 +9,7 @@
 // against). Rows are independent, so any split of rows over threads gives the same bits.
 #include <algorithm>
 #include <atomic>
+#include <string>
 #include <thread>
 
 #include "row_sweep.hpp"
@@ -29,19 +30,26 @@ class ToothPassage : public TopographyEvaluator {
         .at_least(1)
         .at_most(50)
         .with_default(std::int64_t{12});
-    s.add_choice("walk", {"row", "node"},
+    s.add_choice("walk", {"row", "node", "scan"},
                  "row: follow each tooth passage from node to node along a row (fast); node: "
-                 "solve every node from scratch (the reference, same heights to round-off)")
+                 "solve every node from scratch (the reference, same heights to round-off); "
+                 "scan: every crossing by brute force, to check the others' stopping rules "
+                 "(thousands of times slower)")
         .with_default(std::string("row"));
     return s;
   }
   explicit ToothPassage(const Params& p)
       : margin_(p.number("catw_margin")),
         iterations_(static_cast<int>(p.integer("iterations"))),
-        by_row_(p.string("walk") == "row") {}
+        walk_(p.string("walk")) {}
 
   void evaluate(const EvaluationRequest& rq, HeightMap& map, WorkCounts& counts) const override {
     const PassageSetup setup(rq, margin_, iterations_);
+    // The scan samples a tooth period 256 times, and a correction's linear piece 4 times.
+    double scan_step = setup.period / 256;
+    for (std::size_t p = 0; p < rq.path->passes(); ++p)
+      if (const double dt = rq.path->correction_step(p); dt > 0)
+        scan_step = std::min(scan_step, dt / 4);
     const Grid& g = map.grid;
     const unsigned threads = std::max(1u, std::min<unsigned>(rq.threads, 64));
     std::vector<NodeCounts> done(threads);
@@ -58,11 +66,13 @@ class ToothPassage : public TopographyEvaluator {
       // machine takes fewer; each row is computed alone, so the bits do not depend on who.
       for (std::size_t j = next_row++; j < g.ny && !rq.stopped(); j = next_row++) {
         double* z = &map.at(0, j);
-        if (by_row_) {
+        if (walk_ == "row") {
           sweep.row(g.y(j), xs, z, mine);
         } else {
           for (std::size_t i = 0; i < g.nx; ++i) {
-            const double low = node_height_reference(setup, xs[i], g.y(j), mine, order, roots);
+            const double low = walk_ == "node"
+                                   ? node_height_reference(setup, xs[i], g.y(j), mine, order, roots)
+                                   : node_height_scan(setup, xs[i], g.y(j), scan_step, mine);
             if (low < z[i]) z[i] = low, ++mine.updates;
           }
         }
@@ -80,13 +90,13 @@ class ToothPassage : public TopographyEvaluator {
     counts["nodes"] = g.size();
     counts["tooth_passages"] = total.passages;
     counts["updates"] = total.updates;
-    if (by_row_) counts["fallbacks"] = total.fallbacks;
+    if (walk_ == "row") counts["fallbacks"] = total.fallbacks;
   }
 
  private:
   double margin_;
   int iterations_;
-  bool by_row_;
+  std::string walk_;
 };
 
 }  // namespace topomill::plugins
