@@ -45,6 +45,24 @@ class CentreTable {
            (-a * b * d / 2) * knots_[i + 1] + (a * b * c / 6) * knots_[i + 2];
   }
 
+  // A lower bound of the centre's height over a short span [ta, tb]: the nominal part's lower
+  // end less twice its bend (which the midpoint measures: for a parabola the chord lies
+  // (za + zb - 2 zm) / 2 above the lowest point), plus the correction's lowest, which, linear
+  // between samples, is at an end or at a sample inside.
+  double lowest_z(double ta, double tb) const {
+    const double za = nominal(ta).z(), zb = nominal(tb).z(), zm = nominal(0.5 * (ta + tb)).z();
+    double z = std::min(za, zb) - std::abs(za + zb - 2 * zm) - 1e-9;
+    const auto& c = *correction_;
+    if (!c.values.empty()) {
+      double d = std::min(c.at(ta).z(), c.at(tb).z());
+      const double last = static_cast<double>(c.values.size() - 1);
+      for (double k = std::ceil(std::max(0.0, ta) / c.dt); k * c.dt < tb && k <= last; ++k)
+        d = std::min(d, c.values[static_cast<std::size_t>(k)].z());
+      z += d;
+    }
+    return z;
+  }
+
   std::size_t bytes() const { return knots_.size() * sizeof(Vec3); }
 
  private:

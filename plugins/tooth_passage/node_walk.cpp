@@ -20,9 +20,15 @@ double node_height_reference(const PassageSetup& s, double x, double y, NodeCoun
     if (std::isnan(t0)) continue;
     const auto radii = s.contact_radii(p, t0);
     const PassageGeometry geo(s, p, x, y, radii.first, radii.second);
-    const double t_b = geo.bottom_near(t0);
-    if (geo.envelope(t_b) >= best) continue;  // this pass cannot lower the node
-    best = std::min(best, geo.walk(t_b, roots, counts.passages));
+    // The walk starts from the bound's bottom: a corrected envelope wiggles with the tooth
+    // period and a golden section on it can stop in any dip, while its floor (the nominal centre
+    // moved by the correction's whole range) has a single minimum, near the ball's lowest
+    // passage over the node.
+    const double t_b = geo.bottom_near([&](double t) { return geo.bound(t); }, t0);
+    const double slack = s.path->corrected() ? 1e-9 : 0.0;  // as the row walk's
+    if (geo.bound(t_b) - slack >= best) continue;           // this pass cannot lower the node
+    best = std::min(best, geo.walk(t_b, roots, counts.passages, best));
+    if (entry.first < PassageGeometry::kOnAxis) best = std::min(best, geo.tip_height(t0));
   }
   return best;
 }

@@ -19,7 +19,9 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
       rev(kTwoPi / std::abs(omega)),
       period(rev / rq.tool->teeth()),
       near_axis(10 * rq.path->feed_speed() / std::abs(omega)),
+      scan_samples(128),
       reach(R + rq.path->max_correction()),
+      reach_xy(std::sqrt(2.0) * rq.path->max_correction()),
       margin(margin_),
       kappa(rq.kappa),
       iterations(iterations_),
@@ -44,6 +46,8 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
       }
     }
     shift_lo.push_back(lo), shift_hi.push_back(hi);
+    if (const double step = path->correction_step(p); step > 0)
+      scan_samples = std::max(scan_samples, static_cast<int>(std::ceil(rev / step)));
   }
 }
 
@@ -87,22 +91,45 @@ double PassageGeometry::crossing(int tooth, double t, double& slope, Probe& last
   return t;
 }
 
-// Usually the secant step finds the one crossing there; close to the tool's axis (the node's
-// azimuth then turns fast, at feed / distance) or where it fails, the window is scanned for every
-// sign change of g (skipping the jumps of its wrap at +-pi) and each bracket bisected.
-void PassageGeometry::crossings_near(int tooth, double guess, std::vector<double>& roots) const {
+// Usually the secant step finds the one crossing there; where the axis comes close to the node
+// anywhere in the window (the node's azimuth then turns fast, at feed / distance, and several
+// crossings may come in one passage) or where it fails, the window is scanned for every sign
+// change of g (skipping the jumps of its wrap at +-pi) and each bracket bisected.
+bool PassageGeometry::crossings_near(int tooth, double guess, std::vector<double>& roots,
+                                     double below) const {
   roots.clear();
   double slope = s_.omega;
   Probe last{};
   const double t = crossing(tooth, guess, slope, last);
-  if (converged(last) && last.rho > s_.near_axis) {
+  if (converged(last) && last.rho > s_.near_axis &&
+      closest(guess - s_.rev / 2, guess + s_.rev / 2) > s_.near_axis) {
     roots.push_back(t);
-    return;
+    return true;
   }
-  constexpr int kSamples = 48;
-  double ta = guess - s_.rev / 2, ga = probe(tooth, ta).g;
+  // A span over which the ball's surface above the node (at least the centre's lowest height
+  // less the half-height of the ball at the node's least distance from the axis) cannot come
+  // below `below` holds no crossing that matters and is not probed: near the axis that is
+  // most of the window. Spans of 16 steps are ruled out first, then the steps of those that
+  // are not.
+  const int kSamples = s_.scan_samples, kChunk = 16;
+  auto at = [&](int k) { return guess - s_.rev / 2 + s_.rev * k / kSamples; };
+  auto cannot_lower = [&](double ta, double tb) {
+    const double rho = std::max(0.0, closest(ta, tb));
+    return rho >= s_.R || table_.lowest_z(ta, tb) - std::sqrt(s_.R2 - rho * rho) >= below;
+  };
+  double ga = NAN;
   for (int k = 1; k <= kSamples; ++k) {
-    const double tb = guess - s_.rev / 2 + s_.rev * k / kSamples, gb = probe(tooth, tb).g;
+    if ((k - 1) % kChunk == 0 && cannot_lower(at(k - 1), at(std::min(k - 1 + kChunk, kSamples)))) {
+      k += kChunk - 1, ga = NAN;
+      continue;
+    }
+    const double ta = at(k - 1), tb = at(k);
+    if (cannot_lower(ta, tb)) {
+      ga = NAN;
+      continue;
+    }
+    if (std::isnan(ga)) ga = probe(tooth, ta).g;
+    const double gb = probe(tooth, tb).g;
     if ((ga < 0) != (gb < 0) && std::abs(gb - ga) < M_PI) {
       double lo_t = ta, hi_t = tb, lo_g = ga;
       for (int it = 0; it < 50 && hi_t - lo_t > 1e-13 * s_.rev; ++it) {
@@ -114,21 +141,35 @@ void PassageGeometry::crossings_near(int tooth, double guess, std::vector<double
       }
       roots.push_back(0.5 * (lo_t + hi_t));
     }
-    ta = tb, ga = gb;
+    ga = gb;
   }
+  return false;
 }
 
-double PassageGeometry::walk(double t_b, std::vector<double>& roots, std::uint64_t& visited) const {
+double PassageGeometry::walk(double t_b, std::vector<double>& roots, std::uint64_t& visited,
+                             double below) const {
   const double t_end = this->t_end(), rev = s_.rev;
   double best = INFINITY;
   for (int tooth = 0; tooth < s_.teeth; ++tooth) {
-    const double t_first = crossing(tooth, t_b);
+    // The windows of a revolution each are laid from the crossing nearest t_b; from t_b itself
+    // where the secant went astray (near the axis it can run off anywhere).
+    double slope = s_.omega;
+    Probe first{};
+    double t_first = crossing(tooth, t_b, slope, first);
+    if (!converged(first) || std::abs(t_first - t_b) > s_.rev) t_first = t_b;
     for (int dir : {+1, -1}) {
       RiseCount rise;
-      for (int m = (dir > 0 ? 0 : 1); m < 100000 && !rise.done(); ++m) {
+      bool regular = true;
+      for (int m = (dir > 0 ? 0 : 1); m < 100000 && !(regular && rise.done()); ++m) {
         const double guess = t_first + dir * m * rev;
         if (guess < -rev / 2 || guess > t_end + rev / 2) break;
-        crossings_near(tooth, guess, roots);
+        // This window and all later ones lie beyond its near edge: past the bound's bottom (t_b
+        // is within a 20th of a tooth period of it), if the bound is too high there, nothing
+        // from here on can lower the node.
+        const double edge = guess - dir * rev / 2;
+        if (m > 0 && dir * (edge - t_b) >= 0.05 * s_.period && bound(edge) >= std::min(best, below))
+          break;
+        regular = crossings_near(tooth, guess, roots, std::min(best, below)) && regular;
         double lowest = INFINITY;
         for (double t : roots) {
           if (t < 0 || t > t_end) continue;

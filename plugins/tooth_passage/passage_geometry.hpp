@@ -34,7 +34,11 @@ struct PassageSetup {
   double rev;        // one spindle revolution, s
   double period;     // one tooth period, s
   double near_axis;  // closer than this to the axis the node's azimuth turns fast (mm)
-  double reach;      // R plus the largest correction: farther across, a pass cannot touch
+  // Samples per revolution where the crossings are scanned for (near the axis): enough that a
+  // correction's linear piece is sampled at least once, so that roots its jerks make are seen.
+  int scan_samples;
+  double reach;     // R plus the largest correction: farther across, a pass cannot touch
+  double reach_xy;  // the largest horizontal correction (mm)
   double margin, kappa;
   int iterations, teeth;
   bool along_y;
@@ -160,12 +164,42 @@ class PassageGeometry {
     return bottom_near([this](double t) { return envelope(t); }, t0);
   }
 
-  // All crossings of one tooth within half a revolution of `guess`, robustly (see .cpp).
-  void crossings_near(int tooth, double guess, std::vector<double>& roots) const;
+  // A lower bound of the node's distance from the tool's axis over [ta, tb]: the nominal axis
+  // runs straight over the surface's plan (raster along a line), less the correction's reach.
+  double closest(double ta, double tb) const {
+    const Vec3 a = table_.nominal(ta), b = table_.nominal(tb);
+    const double ux = b.x() - a.x(), uy = b.y() - a.y(), len2 = ux * ux + uy * uy;
+    const double u =
+        len2 > 0 ? std::clamp(((x_ - a.x()) * ux + (y_ - a.y()) * uy) / len2, 0.0, 1.0) : 0.0;
+    return std::hypot(x_ - a.x() - u * ux, y_ - a.y() - u * uy) - s_.reach_xy;
+  }
 
-  // The reference walk: visits tooth passages outwards from the one nearest t_b until heights
-  // rise twice on both sides; returns the lowest height over the node (+inf if none).
-  double walk(double t_b, std::vector<double>& roots, std::uint64_t& visited) const;
+  // All crossings of one tooth within half a revolution of `guess` that can lie below `below`,
+  // robustly (see .cpp). False when that took the scan (near the axis, or the secant did not
+  // converge).
+  bool crossings_near(int tooth, double guess, std::vector<double>& roots,
+                      double below = INFINITY) const;
+
+  // A true lower bound of every crossing's height at time t with a single minimum: the envelope
+  // itself when ideal, its floor when corrected.
+  double bound(double t) const { return s_.path->corrected() ? floor_envelope(t) : envelope(t); }
+
+  // The tip is a point of every edge, and g jumps by pi (not through zero) where the axis passes
+  // over the node: a node on the pass's line, which the axis passes within kOnAxis of at t0
+  // (the level time), is cut by the tip then. +inf otherwise.
+  static constexpr double kOnAxis = 1e-9;  // mm
+  double tip_height(double t0) const {
+    const Probe q = probe(0, t0);
+    return q.over && q.rho < kOnAxis ? q.height : INFINITY;
+  }
+
+  // The reference walk: visits tooth passages outwards from the one nearest t_b (the bound's
+  // bottom) until heights rise twice, or, wherever the passages were irregular (near the axis),
+  // until the bound proves no later passage can go lower; returns the lowest height over the
+  // node (+inf if none).
+  // `below` is the node's best height so far: nothing at or above it is looked for.
+  double walk(double t_b, std::vector<double>& roots, std::uint64_t& visited,
+              double below = INFINITY) const;
 
  private:
   const PassageSetup& s_;

@@ -90,20 +90,22 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
   } else {
     // A corrected envelope wiggles: the reference's own bottom and test decide, after a cheap
     // floor (the correction's whole range) has ruled out the passes that cannot come close.
-    const double t_f = bottom([&](double t) { return geo.floor_envelope(t); }, geo, st, x, t0);
-    if (std::isnan(t_f)) return INFINITY;
-    if (geo.floor_envelope(t_f) - 1e-9 >= best) return can_lower = false, INFINITY;
-    t_b = geo.bottom_near(t0());
-    if (geo.envelope(t_b) >= best) return INFINITY;
+    t_b = bottom([&](double t) { return geo.floor_envelope(t); }, geo, st, x, t0);
+    if (std::isnan(t_b)) return INFINITY;
+    if (geo.floor_envelope(t_b) - 1e-9 >= best) return can_lower = false, INFINITY;
   }
   bool irregular = false;
-  const double h = walk(geo, st, t_b, ideal ? best : -INFINITY, counts, irregular);
-  if (!irregular) return h;
-  // The reference's own walk, from the reference's own bottom (which the corrected branch has
-  // already), so that the result is its.
-  ++counts.fallbacks;
-  for (auto& r : st.roots) r.clear();
-  return geo.walk(ideal ? geo.bottom_near(t0()) : t_b, roots_, counts.passages);
+  double h = walk(geo, st, t_b, best, counts, irregular);
+  if (irregular) {
+    // The reference's own walk, from the reference's own bottom (which the corrected branch
+    // has already), so that the result is its.
+    ++counts.fallbacks;
+    for (auto& r : st.roots) r.clear();
+    h = geo.walk(ideal ? geo.bottom_near(t0()) : t_b, roots_, counts.passages, best);
+  }
+  if (std::abs((s_.along_y ? x : y) - s_.line[p]) < PassageGeometry::kOnAxis)
+    h = std::min(h, geo.tip_height(t0()));
+  return h;
 }
 
 // The bottom moves little from one node to the next: a parabola through three heights around
@@ -133,8 +135,8 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
 double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
                       NodeCounts& counts, bool& irregular) {
   const double rev = s_.rev, t_end = geo.t_end();
-  const double beyond = 0.05 * s_.period;      // how near t_b may be off the envelope's bottom
-  const bool bounded = best_node > -INFINITY;  // ideal: the envelope has a single minimum
+  const double beyond = 0.05 * s_.period;  // how near t_b may be off the bound's bottom
+  const bool ideal = !s_.path->corrected();
   double best = INFINITY;
   std::uint64_t visited = 0;
   for (int tooth = 0; tooth < s_.teeth; ++tooth) {
@@ -155,7 +157,7 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
     };
     // The first crossing: the reference's (from t_b) when its walk is to be repeated exactly.
     Probe first{};
-    const double t_first = solve(t_b, bounded ? 0.75 * rev : 0.0, first);
+    const double t_first = solve(t_b, ideal ? 0.75 * rev : 0.0, first);
     if (std::isnan(t_first)) return irregular = true, INFINITY;
     for (int dir : {+1, -1}) {
       double t_prev = t_first;
@@ -166,11 +168,11 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
         if (m > 0) {
           const double guess = t_prev + dir * rev;
           if (guess < -rev / 2 || guess > t_end + rev / 2) break;
-          // The next crossing is at least half a revolution on; past the bottom the envelope
-          // only rises, so if it is already too high there, no later passage can lower the node.
+          // The next crossing is at least half a revolution on; past the bottom the bound (the
+          // envelope, or its floor when corrected) only rises, so if it is already too high
+          // there, no later passage can lower the node.
           const double t_bound = t_prev + dir * 0.5 * rev;
-          if (bounded && dir * (t_bound - t_b) >= beyond &&
-              geo.envelope(t_bound) >= std::min(best, best_node))
+          if (dir * (t_bound - t_b) >= beyond && geo.bound(t_bound) >= std::min(best, best_node))
             break;
           t = solve(guess, 0.25 * rev, q);
           if (std::isnan(t) || dir * (t - t_prev) < 0.6 * rev || dir * (t - t_prev) > 1.6 * rev)
