@@ -19,7 +19,7 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
       rev(kTwoPi / std::abs(omega)),
       period(rev / rq.tool->teeth()),
       near_axis(10 * rq.path->feed_speed() / std::abs(omega)),
-      scan_samples(128),
+      scan_samples(48),
       reach(R + rq.path->max_correction()),
       reach_xy(std::sqrt(2.0) * rq.path->max_correction()),
       margin(margin_),
