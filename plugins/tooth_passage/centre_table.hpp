@@ -63,6 +63,17 @@ class CentreTable {
     return z;
   }
 
+  // Upper bounds of the nominal centre's horizontal and vertical speed (mm/s): the knots' chords,
+  // with a margin for the bend between them.
+  std::pair<double, double> top_speed() const {
+    double h = 0, v = 0;
+    for (std::size_t i = 0; i + 1 < knots_.size(); ++i) {
+      const Vec3 d = (knots_[i + 1] - knots_[i]) * inv_dt_;
+      h = std::max(h, std::hypot(d.x(), d.y())), v = std::max(v, std::abs(d.z()));
+    }
+    return {1.05 * h, 1.05 * v};
+  }
+
   std::size_t bytes() const { return knots_.size() * sizeof(Vec3); }
 
  private:

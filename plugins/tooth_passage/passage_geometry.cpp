@@ -48,7 +48,31 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     shift_lo.push_back(lo), shift_hi.push_back(hi);
     if (const double step = path->correction_step(p); step > 0)
       scan_samples = std::max(scan_samples, static_cast<int>(std::ceil(rev / step)));
+    const auto& values = path->correction_samples(p).values;
+    piece_speed.emplace_back();
+    for (std::size_t k = 0; k + 1 < values.size(); ++k) {
+      const Vec3 d = (values[k + 1] - values[k]) / path->correction_step(p);
+      // Rounded up to float, so that the bound stays one.
+      piece_speed.back().emplace_back(
+          std::nextafter(static_cast<float>(std::hypot(d.x(), d.y())), INFINITY),
+          std::nextafter(static_cast<float>(std::abs(d.z())), INFINITY));
+    }
+    nominal_speed.push_back(centre.back().top_speed());
   }
+}
+
+std::pair<double, double> PassageSetup::top_speed(std::size_t p, double ta, double tb) const {
+  auto [h, v] = nominal_speed[p];
+  const auto& pieces = piece_speed[p];
+  if (pieces.empty()) return {h, v};
+  const double dt = path->correction_step(p);
+  const auto last = static_cast<double>(pieces.size() - 1);
+  const auto k0 = static_cast<std::size_t>(std::clamp(std::floor(ta / dt), 0.0, last));
+  const auto k1 = static_cast<std::size_t>(std::clamp(std::floor(tb / dt), 0.0, last));
+  double ch = 0, cv = 0;
+  for (std::size_t k = k0; k <= k1; ++k)
+    ch = std::max<double>(ch, pieces[k].first), cv = std::max<double>(cv, pieces[k].second);
+  return {h + ch, v + cv};
 }
 
 double PassageSetup::level_time(std::size_t p, double x, double y) const {

@@ -50,6 +50,13 @@ struct PassageSetup {
   // corrected centre is, it is within [shift_lo, shift_hi] of the nominal one.
   std::vector<Vec3> shift_lo, shift_hi;
 
+  // Per pass, the speed of the centre's correction on each of its linear pieces, horizontal and
+  // vertical (mm/s), and the nominal centre's top speeds: how fast the tool can move.
+  std::vector<std::vector<std::pair<float, float>>> piece_speed;
+  std::vector<std::pair<double, double>> nominal_speed;
+  // The centre's top horizontal and vertical speed over [ta, tb] on pass p.
+  std::pair<double, double> top_speed(std::size_t p, double ta, double tb) const;
+
   // The pass's time when its centre is level with (x, y) along the feed (secant steps).
   double level_time(std::size_t p, double x, double y) const;
   // The contact range [lo, hi] of polar angles at that time, as R sin(lo), R sin(hi).
@@ -94,6 +101,7 @@ class PassageGeometry {
         phase_(s.path->pass(pass).phase) {}
 
   std::size_t pass() const { return pass_; }
+  double x() const { return x_; }
   double t_end() const { return s_.path->pass(pass_).t_end; }
 
   Probe probe(int tooth, double t) const {

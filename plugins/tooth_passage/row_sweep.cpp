@@ -88,14 +88,16 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
       return can_lower = false, INFINITY;
     }
   } else {
-    // A corrected envelope wiggles: the reference's own bottom and test decide, after a cheap
-    // floor (the correction's whole range) has ruled out the passes that cannot come close.
+    // A corrected envelope wiggles: its floor (the nominal centre moved by the correction's
+    // whole range) is a true bound with a single minimum; it rules out the passes that cannot
+    // come close and ends the walk (walk_corrected).
     t_b = bottom([&](double t) { return geo.floor_envelope(t); }, geo, st, x, t0);
     if (std::isnan(t_b)) return INFINITY;
     if (geo.floor_envelope(t_b) - 1e-9 >= best) return can_lower = false, INFINITY;
   }
   bool irregular = false;
-  double h = walk(geo, st, t_b, best, counts, irregular);
+  double h = ideal ? walk(geo, st, t_b, best, counts, irregular)
+                   : walk_corrected(geo, st, t_b, best, counts, irregular);
   if (irregular) {
     // The reference's own walk, from the reference's own bottom (which the corrected branch
     // has already), so that the result is its.
@@ -188,6 +190,96 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
           }
         }
         rise.add(lowest);
+      }
+    }
+    std::sort(fresh_.begin(), fresh_.end(), [](const Root& a, const Root& b) { return a.t < b.t; });
+    prev.swap(fresh_);
+  }
+  counts.passages += visited;
+  return best;
+}
+
+// On a corrected path a passage's height along the row, h(x) = E(t(x), x) (E the ball's surface
+// over the node, t(x) the passage's root), falls at most at
+//   |dE/dx| + |dE/dt| |dt/dx| <= tan(alpha) + (vz + tan(alpha) vxy) bx,
+// where bx = |g_x| / |g_t| bounds the root's move: |g_x| <= 1/rho + k (the node's azimuth and the
+// lag, k = |lag'| / (R cos alpha)), |g_t| >= |omega| - vxy sqrt(1/rho^2 + k^2). All with the
+// centre's top speeds (vxy, vz) over a window of eight correction steps either side of the root
+// and rho over what the node and the axis can move in it, so the bound holds while the root stays
+// in the window (reach = window / bx) and the node within kReach. Where the correction jerks the
+// axis sideways faster than the edge sweeps (|g_t| could vanish), there is no bound.
+double RowSweep::fall_rate(std::size_t p, double t, double rho, double& reach) const {
+  constexpr double kReach = 0.05;  // mm along the row
+  const double w = 8 * s_.path->correction_step(p);
+  const auto [vxy, vz] = s_.top_speed(p, t - w, t + w);
+  const double rho_lo = rho - vxy * w - kReach, rho_hi = rho + vxy * w + kReach;
+  if (rho_lo <= 0 || rho_hi >= 0.95 * s_.R) return INFINITY;
+  const double s_lo = rho_lo / s_.R, s_hi = rho_hi / s_.R;
+  const double c_lo = std::sqrt(1 - s_lo * s_lo), c_hi = std::sqrt(1 - s_hi * s_hi);
+  const double lag_slope = std::max(std::abs(s_.tool->lag_slope_sc(s_lo, c_lo)),
+                                    std::abs(s_.tool->lag_slope_sc(s_hi, c_hi)));
+  const double k = lag_slope / (s_.R * c_hi);
+  const double sweep = std::abs(s_.omega) - vxy * std::sqrt(1 / (rho_lo * rho_lo) + k * k);
+  if (sweep <= 0.2 * std::abs(s_.omega)) return INFINITY;
+  const double bx = (1 / rho_lo + k) / sweep;
+  reach = std::min(kReach, w / bx);
+  const double tan_hi = s_hi / c_hi;
+  return tan_hi + (vz + tan_hi * vxy) * bx;
+}
+
+// Every passage is visited outwards from t_b until the floor proves that no later one can lower
+// the node (no rule of thumb: the correction makes heights jump from passage to passage), but a
+// passage whose height, solved at an earlier node of the row, cannot have fallen below the best
+// since (fall_rate) is not solved again.
+double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, double t_b,
+                                double best_node, NodeCounts& counts, bool& irregular) {
+  const double rev = s_.rev, t_end = geo.t_end(), x = geo.x();
+  const double beyond = 0.05 * s_.period;  // how near t_b may be off the floor's bottom
+  double best = INFINITY;
+  std::uint64_t visited = 0;
+  for (int tooth = 0; tooth < s_.teeth; ++tooth) {
+    std::vector<Root>& prev = st.roots[static_cast<std::size_t>(tooth)];
+    fresh_.clear();
+    // The passage near `guess` (its root within `reach` of the time): skipped if its bound
+    // allows, else solved; false when irregular.
+    auto visit = [&](double guess, double reach, double& t) {
+      const Root* match = nullptr;
+      for (const Root& r : prev)
+        if (std::abs(r.t - guess) < reach) reach = std::abs(r.t - guess), match = &r;
+      if (match && std::abs(x - match->x) <= match->reach &&
+          match->height - match->fall * std::abs(x - match->x) >= std::min(best, best_node)) {
+        fresh_.push_back(*match);
+        t = match->t;
+        return true;
+      }
+      double slope = match ? match->slope : s_.omega;
+      Probe q{};
+      t = geo.crossing(tooth, match ? match->t + match->drift * (x - match->x) : guess, slope, q);
+      if (!PassageGeometry::converged(q) || q.rho <= s_.near_axis) return false;
+      Root r{t, match && x != match->x ? (t - match->t) / (x - match->x) : 0.0, slope};
+      if (t >= 0 && t <= t_end && std::isfinite(q.height)) {
+        ++visited;
+        if (q.over) best = std::min(best, q.height);
+        r.x = x, r.height = q.height, r.fall = fall_rate(geo.pass(), t, q.rho, r.reach);
+      }
+      fresh_.push_back(r);
+      return true;
+    };
+    double t_first = 0;
+    if (!visit(t_b, 0.5 * rev, t_first)) return irregular = true, INFINITY;
+    for (int dir : {+1, -1}) {
+      double t_prev = t_first;
+      for (int m = 1; m < 100000; ++m) {
+        const double guess = t_prev + dir * rev;
+        if (guess < -rev / 2 || guess > t_end + rev / 2) break;
+        const double t_bound = t_prev + dir * 0.5 * rev;
+        if (dir * (t_bound - t_b) >= beyond && geo.bound(t_bound) >= std::min(best, best_node))
+          break;
+        double t = 0;
+        if (!visit(guess, 0.25 * rev, t) || dir * (t - t_prev) < 0.6 * rev ||
+            dir * (t - t_prev) > 1.6 * rev)
+          return irregular = true, INFINITY;
+        t_prev = t;
       }
     }
     std::sort(fresh_.begin(), fresh_.end(), [](const Root& a, const Root& b) { return a.t < b.t; });

@@ -23,7 +23,10 @@ class RowSweep {
 
  private:
   struct Root {
-    double t, drift, slope;
+    double t, drift, slope;  // the root, its move per unit x along the row, the secant there
+    // Corrected paths only: where it was solved, the edge's height there, and how fast that
+    // height can fall along the row (mm/mm) for `reach` either side; infinite when unknown.
+    double x = 0, height = INFINITY, fall = INFINITY, reach = 0;
   };
   struct PassState {
     bool active = false, have_bottom = false;
@@ -40,6 +43,11 @@ class RowSweep {
   double bottom(F f, const PassageGeometry& geo, PassState& st, double x, T0 t0);
   double walk(const PassageGeometry& geo, PassState& st, double t_b, double best,
               NodeCounts& counts, bool& irregular);
+  double walk_corrected(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
+                        NodeCounts& counts, bool& irregular);
+  // How fast a corrected passage's height can fall along the row from its root t (at distance
+  // rho from the axis), and for how far (`reach`) that holds; infinite when no bound holds.
+  double fall_rate(std::size_t pass, double t, double rho, double& reach) const;
 
   const PassageSetup& s_;
   std::vector<std::size_t> by_line_;  // passes sorted by their line
