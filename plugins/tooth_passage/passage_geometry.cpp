@@ -173,6 +173,9 @@ bool PassageGeometry::crossings_near(int tooth, double guess, std::vector<double
 double PassageGeometry::walk(double t_b, std::vector<double>& roots, std::uint64_t& visited,
                              double below) const {
   const double t_end = this->t_end(), rev = s_.rev;
+  // Heights rising twice end a walk only on an ideal path, where they follow the envelope; a
+  // correction makes them jump from passage to passage, and only the floor ends the walk.
+  const bool by_rise = !s_.path->corrected();
   double best = INFINITY;
   for (int tooth = 0; tooth < s_.teeth; ++tooth) {
     // The windows of a revolution each are laid from the crossing nearest t_b; from t_b itself
@@ -184,7 +187,7 @@ double PassageGeometry::walk(double t_b, std::vector<double>& roots, std::uint64
     for (int dir : {+1, -1}) {
       RiseCount rise;
       bool regular = true;
-      for (int m = (dir > 0 ? 0 : 1); m < 100000 && !(regular && rise.done()); ++m) {
+      for (int m = (dir > 0 ? 0 : 1); m < 100000 && !(by_rise && regular && rise.done()); ++m) {
         const double guess = t_first + dir * m * rev;
         if (guess < -rev / 2 || guess > t_end + rev / 2) break;
         // This window and all later ones lie beyond its near edge: past the bound's bottom (t_b

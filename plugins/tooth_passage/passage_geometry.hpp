@@ -202,9 +202,9 @@ class PassageGeometry {
   }
 
   // The reference walk: visits tooth passages outwards from the one nearest t_b (the bound's
-  // bottom) until heights rise twice, or, wherever the passages were irregular (near the axis),
-  // until the bound proves no later passage can go lower; returns the lowest height over the
-  // node (+inf if none).
+  // bottom) until heights rise twice (on an ideal path, and where the passages were regular) or
+  // the bound proves no later passage can go lower; returns the lowest height over the node
+  // (+inf if none).
   // `below` is the node's best height so far: nothing at or above it is looked for.
   double walk(double t_b, std::vector<double>& roots, std::uint64_t& visited,
               double below = INFINITY) const;
