@@ -5,7 +5,12 @@
 
 namespace topomill::plugins {
 
-RowSweep::RowSweep(const PassageSetup& s) : s_(s), by_line_(s.line.size()), state_(s.line.size()) {
+RowSweep::RowSweep(const PassageSetup& s)
+    : s_(s),
+      by_line_(s.line.size()),
+      state_(s.line.size()),
+      later_(static_cast<std::size_t>(s.teeth)),
+      before_(static_cast<std::size_t>(s.teeth)) {
   std::iota(by_line_.begin(), by_line_.end(), std::size_t{0});
   std::sort(by_line_.begin(), by_line_.end(),
             [&](std::size_t a, std::size_t b) { return s.line[a] < s.line[b]; });
@@ -16,6 +21,7 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
   for (auto& st : state_) {
     st.active = st.have_bottom = false;
     st.floor_x = NAN;
+    st.stop[0] = st.stop[1] = NAN;
     for (auto& r : st.roots) r.clear();
   }
   const auto n = static_cast<std::ptrdiff_t>(by_line_.size());
@@ -237,53 +243,79 @@ double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, doubl
   const double beyond = 0.05 * s_.period;  // how near t_b may be off the floor's bottom
   double best = INFINITY;
   std::uint64_t visited = 0;
-  for (int tooth = 0; tooth < s_.teeth; ++tooth) {
-    std::vector<Root>& prev = st.roots[static_cast<std::size_t>(tooth)];
-    fresh_.clear();
-    // The passage near `guess` (its root within `reach` of the time): skipped if its bound
-    // allows, else solved; false when irregular.
-    auto visit = [&](double guess, double reach, double& t) {
-      const Root* match = nullptr;
-      for (const Root& r : prev)
-        if (std::abs(r.t - guess) < reach) reach = std::abs(r.t - guess), match = &r;
-      if (match && std::abs(x - match->x) <= match->reach &&
-          match->height - match->fall * std::abs(x - match->x) >= std::min(best, best_node)) {
-        fresh_.push_back(*match);
-        t = match->t;
-        return true;
-      }
-      double slope = match ? match->slope : s_.omega;
-      Probe q{};
-      t = geo.crossing(tooth, match ? match->t + match->drift * (x - match->x) : guess, slope, q);
-      if (!PassageGeometry::converged(q) || q.rho <= s_.near_axis) return false;
-      Root r{t, match && x != match->x ? (t - match->t) / (x - match->x) : 0.0, slope};
-      if (t >= 0 && t <= t_end && std::isfinite(q.height)) {
-        ++visited;
-        if (q.over) best = std::min(best, q.height);
-        r.x = x, r.height = q.height, r.fall = fall_rate(geo.pass(), t, q.rho, r.reach);
-      }
-      fresh_.push_back(r);
+  // The passage of `tooth` near `guess` (its root within `reach` of the time): skipped if its
+  // bound allows, else solved; appended to `out`; false when irregular.
+  auto visit = [&](int tooth, double guess, double reach, double& t, std::vector<Root>& out) {
+    const std::vector<Root>& prev = st.roots[static_cast<std::size_t>(tooth)];
+    const Root* match = nullptr;
+    const auto next = std::lower_bound(prev.begin(), prev.end(), guess,
+                                       [](const Root& r, double v) { return r.t < v; });
+    for (auto it = next == prev.begin() ? next : next - 1; it != prev.end() && it <= next; ++it)
+      if (std::abs(it->t - guess) < reach) reach = std::abs(it->t - guess), match = &*it;
+    if (match && std::abs(x - match->x) <= match->reach &&
+        match->height - match->fall * std::abs(x - match->x) >= std::min(best, best_node)) {
+      out.push_back(*match);
+      t = match->t;
       return true;
-    };
-    double t_first = 0;
-    if (!visit(t_b, 0.5 * rev, t_first)) return irregular = true, INFINITY;
-    for (int dir : {+1, -1}) {
-      double t_prev = t_first;
+    }
+    double slope = match ? match->slope : s_.omega;
+    Probe q{};
+    t = geo.crossing(tooth, match ? match->t + match->drift * (x - match->x) : guess, slope, q);
+    if (!PassageGeometry::converged(q) || q.rho <= s_.near_axis) return false;
+    Root r{t, match && x != match->x ? (t - match->t) / (x - match->x) : 0.0, slope};
+    if (t >= 0 && t <= t_end && std::isfinite(q.height)) {
+      ++visited;
+      if (q.over) best = std::min(best, q.height);
+      r.x = x, r.height = q.height, r.fall = fall_rate(geo.pass(), t, q.rho, r.reach);
+    }
+    out.push_back(r);
+    return true;
+  };
+  // Each tooth's passage nearest the floor's bottom first, for a best to bound the rest by.
+  std::vector<double>& first = first_;
+  first.assign(static_cast<std::size_t>(s_.teeth), 0.0);
+  for (int tooth = 0; tooth < s_.teeth; ++tooth) {
+    const auto j = static_cast<std::size_t>(tooth);
+    later_[j].clear(), before_[j].clear();
+    if (!visit(tooth, t_b, 0.5 * rev, first[j], later_[j])) return irregular = true, INFINITY;
+  }
+  // Where the floor, past its bottom, is too high for any passage to lower the node, on each
+  // side: moved from the last node's, which it is close to. The best only falls from here on,
+  // which can only bring these nearer: they stay true.
+  const double target = std::min(best, best_node);
+  for (int side = 0; side < 2; ++side) {
+    const double dir = side ? 1.0 : -1.0;
+    double& stop = st.stop[side];
+    if (std::isnan(stop) || dir * (stop - t_b) < beyond) stop = t_b + dir * beyond;
+    while (geo.bound(stop) < target && dir * (stop - t_b) < t_end + rev) stop += dir * 0.5 * rev;
+    while (dir * (stop - dir * 0.5 * rev - t_b) >= beyond &&
+           geo.bound(stop - dir * 0.5 * rev) >= target)
+      stop -= dir * 0.5 * rev;
+  }
+  for (int tooth = 0; tooth < s_.teeth; ++tooth) {
+    const auto j = static_cast<std::size_t>(tooth);
+    for (int side = 1; side >= 0; --side) {
+      const double dir = side ? 1.0 : -1.0;
+      std::vector<Root>& out = side ? later_[j] : before_[j];
+      double t_prev = first[j];
       for (int m = 1; m < 100000; ++m) {
         const double guess = t_prev + dir * rev;
         if (guess < -rev / 2 || guess > t_end + rev / 2) break;
-        const double t_bound = t_prev + dir * 0.5 * rev;
-        if (dir * (t_bound - t_b) >= beyond && geo.bound(t_bound) >= std::min(best, best_node))
-          break;
+        // Every later passage lies beyond half a revolution on.
+        if (dir * (t_prev + dir * 0.5 * rev - st.stop[side]) >= 0) break;
         double t = 0;
-        if (!visit(guess, 0.25 * rev, t) || dir * (t - t_prev) < 0.6 * rev ||
+        if (!visit(tooth, guess, 0.25 * rev, t, out) || dir * (t - t_prev) < 0.6 * rev ||
             dir * (t - t_prev) > 1.6 * rev)
           return irregular = true, INFINITY;
         t_prev = t;
       }
     }
-    std::sort(fresh_.begin(), fresh_.end(), [](const Root& a, const Root& b) { return a.t < b.t; });
-    prev.swap(fresh_);
+  }
+  for (int tooth = 0; tooth < s_.teeth; ++tooth) {
+    const auto j = static_cast<std::size_t>(tooth);
+    std::vector<Root>& prev = st.roots[j];
+    prev.assign(before_[j].rbegin(), before_[j].rend());
+    prev.insert(prev.end(), later_[j].begin(), later_[j].end());
   }
   counts.passages += visited;
   return best;

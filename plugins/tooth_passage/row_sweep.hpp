@@ -34,6 +34,7 @@ class RowSweep {
     double tb = 0, tb_x = 0, tb_rate = 0;              // last bottom, where, and its rate along x
     double floor = 0, floor_x = NAN, floor_slope = 0;  // last too-high bottom, where, its slope
     std::vector<std::vector<Root>> roots;              // per tooth, the last node's crossings
+    double stop[2] = {NAN, NAN};  // corrected: beyond these the floor is too high (earlier, later)
   };
 
   double pass_height(std::size_t p, double x, double y, double best, bool& can_lower,
@@ -53,6 +54,8 @@ class RowSweep {
   std::vector<std::size_t> by_line_;  // passes sorted by their line
   std::vector<PassState> state_;
   std::vector<Root> fresh_;
+  std::vector<std::vector<Root>> later_, before_;  // per tooth, for walk_corrected
+  std::vector<double> first_;
   std::vector<double> roots_;
 };
 
