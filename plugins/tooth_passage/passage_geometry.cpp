@@ -52,10 +52,7 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     piece_speed.emplace_back();
     for (std::size_t k = 0; k + 1 < values.size(); ++k) {
       const Vec3 d = (values[k + 1] - values[k]) / path->correction_step(p);
-      // Rounded up to float, so that the bound stays one.
-      piece_speed.back().emplace_back(
-          std::nextafter(static_cast<float>(std::hypot(d.x(), d.y())), INFINITY),
-          std::nextafter(static_cast<float>(std::abs(d.z())), INFINITY));
+      piece_speed.back().emplace_back(std::hypot(d.x(), d.y()), std::abs(d.z()));
     }
     nominal_speed.push_back(centre.back().top_speed());
   }
@@ -71,7 +68,7 @@ std::pair<double, double> PassageSetup::top_speed(std::size_t p, double ta, doub
   const auto k1 = static_cast<std::size_t>(std::clamp(std::floor(tb / dt), 0.0, last));
   double ch = 0, cv = 0;
   for (std::size_t k = k0; k <= k1; ++k)
-    ch = std::max<double>(ch, pieces[k].first), cv = std::max<double>(cv, pieces[k].second);
+    ch = std::max(ch, pieces[k].first), cv = std::max(cv, pieces[k].second);
   return {h + ch, v + cv};
 }
 
@@ -131,8 +128,8 @@ bool PassageGeometry::crossings_near(int tooth, double guess, std::vector<double
     return true;
   }
   // A span over which the ball's surface above the node (at least the centre's lowest height
-  // less the half-height of the ball at the node's least distance from the axis) cannot come
-  // below `below` holds no crossing that matters and is not probed: near the axis that is
+  // less the ball's depth below its centre at the node's least distance from the axis) cannot
+  // come below `below` holds no crossing that matters and is not probed: near the axis that is
   // most of the window. Spans of 16 steps are ruled out first, then the steps of those that
   // are not.
   const int kSamples = s_.scan_samples, kChunk = 16;

@@ -52,7 +52,7 @@ struct PassageSetup {
 
   // Per pass, the speed of the centre's correction on each of its linear pieces, horizontal and
   // vertical (mm/s), and the nominal centre's top speeds: how fast the tool can move.
-  std::vector<std::vector<std::pair<float, float>>> piece_speed;
+  std::vector<std::vector<std::pair<double, double>>> piece_speed;
   std::vector<std::pair<double, double>> nominal_speed;
   // The centre's top horizontal and vertical speed over [ta, tb] on pass p.
   std::pair<double, double> top_speed(std::size_t p, double ta, double tb) const;
