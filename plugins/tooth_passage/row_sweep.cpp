@@ -143,8 +143,7 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
 double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
                       NodeCounts& counts, bool& irregular) {
   const double rev = s_.rev, t_end = geo.t_end();
-  const double beyond = 0.05 * s_.period;  // how near t_b may be off the bound's bottom
-  const bool ideal = !s_.path->corrected();
+  const double beyond = 0.05 * s_.period;  // how near t_b may be off the envelope's bottom
   double best = INFINITY;
   std::uint64_t visited = 0;
   for (int tooth = 0; tooth < s_.teeth; ++tooth) {
@@ -163,9 +162,8 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
       fresh_.push_back({t, match ? t - match->t : 0.0, slope});
       return t;
     };
-    // The first crossing: the reference's (from t_b) when its walk is to be repeated exactly.
     Probe first{};
-    const double t_first = solve(t_b, ideal ? 0.75 * rev : 0.0, first);
+    const double t_first = solve(t_b, 0.75 * rev, first);
     if (std::isnan(t_first)) return irregular = true, INFINITY;
     for (int dir : {+1, -1}) {
       double t_prev = t_first;
@@ -176,11 +174,10 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
         if (m > 0) {
           const double guess = t_prev + dir * rev;
           if (guess < -rev / 2 || guess > t_end + rev / 2) break;
-          // The next crossing is at least half a revolution on; past the bottom the bound (the
-          // envelope, or its floor when corrected) only rises, so if it is already too high
-          // there, no later passage can lower the node.
+          // The next crossing is at least half a revolution on; past the bottom the envelope
+          // only rises, so if it is already too high there, no later passage can lower the node.
           const double t_bound = t_prev + dir * 0.5 * rev;
-          if (dir * (t_bound - t_b) >= beyond && geo.bound(t_bound) >= std::min(best, best_node))
+          if (dir * (t_bound - t_b) >= beyond && geo.envelope(t_bound) >= std::min(best, best_node))
             break;
           t = solve(guess, 0.25 * rev, q);
           if (std::isnan(t) || dir * (t - t_prev) < 0.6 * rev || dir * (t - t_prev) > 1.6 * rev)

@@ -3,9 +3,12 @@
 // its drift, with its slope) and converges in one or two probes. Passes are taken nearest first
 // and stop on a side at the first one whose envelope cannot lower the node; along a passage the
 // walk stops as soon as the envelope, which has a single minimum, proves that no later passage
-// can go below the best height found. Anything irregular (a node near the tool's axis, a
-// crossing that does not converge, passages closer than half a revolution) is handed to the
-// reference walk for that node and pass, so the result is the reference's to round-off.
+// can go below the best height found. On a corrected path the floor takes the envelope's place
+// and every passage between its stops is visited, but one whose height, solved at an earlier
+// node, cannot have fallen below the best since is not solved again (walk_corrected). Anything
+// irregular (a node near the tool's axis, a crossing that does not converge, passages closer
+// than half a revolution) is handed to the reference walk for that node and pass, so the result
+// is the reference's to round-off.
 #pragma once
 
 #include <cstdint>
@@ -23,7 +26,9 @@ class RowSweep {
 
  private:
   struct Root {
-    double t, drift, slope;  // the root, its move per unit x along the row, the secant there
+    // The root, its move (since the node before when ideal; per unit x along the row when
+    // corrected, where a root is not solved at every node), the secant there.
+    double t, drift, slope;
     // Corrected paths only: where it was solved, the edge's height there, and how fast that
     // height can fall along the row (mm/mm) for `reach` either side; infinite when unknown.
     double x = 0, height = INFINITY, fall = INFINITY, reach = 0;
