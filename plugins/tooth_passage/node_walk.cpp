@@ -51,16 +51,8 @@ double node_height_scan(const PassageSetup& s, double x, double y, double step,
       for (double t = ta + step; t_prev < tb; t += step) {
         t = std::min(t, tb);
         const double g = geo.probe(tooth, t).g;
-        if ((g < 0) != (g_prev < 0) && std::abs(g - g_prev) < M_PI) {  // not the wrap at pi
-          double lo = t_prev, hi = t, g_lo = g_prev;
-          for (int it = 0; it < 200 && hi - lo > 1e-13 * s.rev; ++it) {
-            const double mid = 0.5 * (lo + hi), g_mid = geo.probe(tooth, mid).g;
-            if ((g_mid < 0) == (g_lo < 0))
-              lo = mid, g_lo = g_mid;
-            else
-              hi = mid;
-          }
-          const Probe q = geo.probe(tooth, 0.5 * (lo + hi));
+        if (PassageGeometry::crosses(g_prev, g)) {
+          const Probe q = geo.probe(tooth, geo.bisect(tooth, t_prev, t, g_prev));
           ++counts.passages;
           if (q.over && std::isfinite(q.height)) best = std::min(best, q.height);
         }

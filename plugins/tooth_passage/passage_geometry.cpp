@@ -151,20 +151,21 @@ bool PassageGeometry::crossings_near(int tooth, double guess, std::vector<double
     }
     if (std::isnan(ga)) ga = probe(tooth, ta).g;
     const double gb = probe(tooth, tb).g;
-    if ((ga < 0) != (gb < 0) && std::abs(gb - ga) < M_PI) {
-      double lo_t = ta, hi_t = tb, lo_g = ga;
-      for (int it = 0; it < 50 && hi_t - lo_t > 1e-13 * s_.rev; ++it) {
-        const double mid = 0.5 * (lo_t + hi_t), gm = probe(tooth, mid).g;
-        if ((gm < 0) == (lo_g < 0))
-          lo_t = mid, lo_g = gm;
-        else
-          hi_t = mid;
-      }
-      roots.push_back(0.5 * (lo_t + hi_t));
-    }
+    if (crosses(ga, gb)) roots.push_back(bisect(tooth, ta, tb, ga));
     ga = gb;
   }
   return false;
+}
+
+double PassageGeometry::bisect(int tooth, double lo, double hi, double g_lo) const {
+  for (int it = 0; it < 200 && hi - lo > 1e-13 * s_.rev; ++it) {
+    const double mid = 0.5 * (lo + hi), g_mid = probe(tooth, mid).g;
+    if ((g_mid < 0) == (g_lo < 0))
+      lo = mid, g_lo = g_mid;
+    else
+      hi = mid;
+  }
+  return 0.5 * (lo + hi);
 }
 
 double PassageGeometry::walk(double t_b, std::vector<double>& roots, std::uint64_t& visited,

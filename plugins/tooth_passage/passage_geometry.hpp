@@ -172,6 +172,13 @@ class PassageGeometry {
     return bottom_near([this](double t) { return envelope(t); }, t0);
   }
 
+  // Whether g, sampled twice, went through zero between (and not through its wrap at +-pi).
+  static bool crosses(double ga, double gb) {
+    return (ga < 0) != (gb < 0) && std::abs(gb - ga) < M_PI;
+  }
+  // That zero, by bisection of [lo, hi] (g(lo) = g_lo) to 1e-13 of a revolution.
+  double bisect(int tooth, double lo, double hi, double g_lo) const;
+
   // A lower bound of the node's distance from the tool's axis over [ta, tb]: the nominal axis
   // runs straight over the surface's plan (raster along a line), less the correction's reach.
   double closest(double ta, double tb) const {

@@ -6,7 +6,8 @@
 //
 // Two walks give the same heights: "row" (default) follows every passage from node to node
 // along a row (row_sweep.hpp); "node" solves each node from scratch (the reference it is tested
-// against). Rows are independent, so any split of rows over threads gives the same bits.
+// against). A third, "scan", finds every crossing by brute force, to check both walks' rules
+// (node_walk.hpp). Rows are independent, so any split of rows over threads gives the same bits.
 #include <algorithm>
 #include <atomic>
 #include <string>
