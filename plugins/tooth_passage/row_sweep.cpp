@@ -97,6 +97,7 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
     // A corrected envelope wiggles: its floor (the nominal centre moved by the correction's
     // whole range) is a true bound with a single minimum; it rules out the passes that cannot
     // come close and ends the walk (walk_corrected).
+    if (cannot_lower(geo, st, best)) return can_lower = false, INFINITY;
     t_b = bottom([&](double t) { return geo.floor_envelope(t); }, geo, st, x, t0);
     if (std::isnan(t_b)) return INFINITY;
     if (geo.floor_envelope(t_b) - 1e-9 >= best) return can_lower = false, INFINITY;
@@ -200,6 +201,22 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
   }
   counts.passages += visited;
   return best;
+}
+
+// The pass as last walked, all at once: none of its passages can have fallen below `best` since
+// (each within its bound's reach) and the floor still rules out everything beyond them.
+bool RowSweep::cannot_lower(const PassageGeometry& geo, const PassState& st, double best) const {
+  if (std::isnan(st.stop[0]) || !std::isfinite(best)) return false;
+  const double x = geo.x(), rev = s_.rev, t_end = geo.t_end();
+  bool any = false;
+  for (const auto& roots : st.roots)
+    for (const Root& r : roots) {
+      if (r.t < -rev / 4 || r.t > t_end + rev / 4) continue;  // beyond the pass, and stays there
+      if (!(std::abs(x - r.x) <= r.reach && r.height - r.fall * std::abs(x - r.x) >= best))
+        return false;
+      any = true;
+    }
+  return any && geo.floor_envelope(st.stop[0]) >= best && geo.floor_envelope(st.stop[1]) >= best;
 }
 
 // On a corrected path a passage's height along the row, h(x) = E(t(x), x) (E the ball's surface

@@ -49,6 +49,7 @@ class RowSweep {
   double bottom(F f, const PassageGeometry& geo, PassState& st, double x, T0 t0);
   double walk(const PassageGeometry& geo, PassState& st, double t_b, double best,
               NodeCounts& counts, bool& irregular);
+  bool cannot_lower(const PassageGeometry& geo, const PassState& st, double best) const;
   double walk_corrected(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
                         NodeCounts& counts, bool& irregular);
   // How fast a corrected passage's height can fall along the row from its root t (at distance
