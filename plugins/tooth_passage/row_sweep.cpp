@@ -18,6 +18,7 @@ RowSweep::RowSweep(const PassageSetup& s)
 }
 
 void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCounts& counts) {
+  win_pass_ = kNone;
   for (auto& st : state_) {
     st.active = st.have_bottom = false;
     st.floor_x = NAN;
@@ -37,7 +38,10 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
         by_line_.begin();
     std::ptrdiff_t left = right - 1;
     bool left_open = left >= 0, right_open = right < n;
-    double best = INFINITY;
+    // Corrected: the passage that was lowest at the node before, solved here first, gives a
+    // height to bound all others by from the start (it is a real crossing of this node).
+    double best = s_.path->corrected() ? seed(x, y, counts) : INFINITY;
+    const std::size_t seeded = win_pass_;
     int misses[2] = {0, 0};
     while (left_open || right_open) {
       const bool take_left =
@@ -49,8 +53,16 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
       int& missed = misses[take_left ? 0 : 1];
       const std::size_t p = by_line_[static_cast<std::size_t>(at)];
       bool can_lower = std::abs(key - s_.line[p]) < s_.reach;
-      if (can_lower) best = std::min(best, pass_height(p, x, y, best, can_lower, counts));
-      missed = can_lower ? 0 : missed + 1;
+      if (can_lower) {
+        walk_tooth_ = -1;
+        const double h = pass_height(p, x, y, best, can_lower, counts);
+        if (h < best) {
+          best = h, win_pass_ = walk_tooth_ >= 0 ? p : kNone;
+          win_tooth_ = walk_tooth_, win_t_ = walk_t_;
+        }
+      }
+      // The seed's pass is skipped as a matter of course: that is not a side's end.
+      missed = can_lower || p == seeded ? 0 : missed + 1;
       at += take_left ? -1 : 1;
       open = missed < misses_to_stop && at >= 0 && at < n;
     }
@@ -203,6 +215,32 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
   return best;
 }
 
+double RowSweep::seed(double x, double y, NodeCounts& counts) {
+  if (win_pass_ == kNone) return INFINITY;
+  PassState& st = state_[win_pass_];
+  const PassageGeometry geo(s_, win_pass_, x, y, st.rho_lo, st.rho_hi);
+  std::vector<Root>& roots = st.roots[static_cast<std::size_t>(win_tooth_)];
+  Root* r = nullptr;
+  for (Root& c : roots)
+    if (std::abs(c.t - win_t_) < 0.25 * s_.rev &&
+        (!r || std::abs(c.t - win_t_) < std::abs(r->t - win_t_)))
+      r = &c;
+  if (!r) return INFINITY;
+  double slope = r->slope;
+  Probe q{};
+  const double t = geo.crossing(win_tooth_, r->t + r->drift * (x - r->x), slope, q);
+  if (!PassageGeometry::converged(q) || q.rho <= s_.near_axis || t < 0 || t > geo.t_end() ||
+      !std::isfinite(q.height) || std::abs(t - r->t) > 0.25 * s_.rev)
+    return INFINITY;
+  ++counts.passages;
+  // The walk will find this passage solved here: it is not solved again.
+  r->drift = x != r->x ? (t - r->t) / (x - r->x) : r->drift;
+  r->t = t, r->slope = slope, r->x = x, r->height = q.height;
+  r->fall = fall_rate(win_pass_, t, q.rho, r->reach);
+  win_t_ = t;
+  return q.over ? q.height : INFINITY;
+}
+
 // The pass as last walked, all at once: none of its passages can have fallen below `best` since
 // (each within its bound's reach) and the floor still rules out everything beyond them.
 bool RowSweep::cannot_lower(const PassageGeometry& geo, const PassState& st, double best) const {
@@ -279,7 +317,7 @@ double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, doubl
     Root r{t, match && x != match->x ? (t - match->t) / (x - match->x) : 0.0, slope};
     if (t >= 0 && t <= t_end && std::isfinite(q.height)) {
       ++visited;
-      if (q.over) best = std::min(best, q.height);
+      if (q.over && q.height < best) best = q.height, walk_tooth_ = tooth, walk_t_ = t;
       r.x = x, r.height = q.height, r.fall = fall_rate(geo.pass(), t, q.rho, r.reach);
     }
     out.push_back(r);

@@ -50,6 +50,8 @@ class RowSweep {
   double walk(const PassageGeometry& geo, PassState& st, double t_b, double best,
               NodeCounts& counts, bool& irregular);
   bool cannot_lower(const PassageGeometry& geo, const PassState& st, double best) const;
+  // Corrected: the last node's lowest passage solved at (x, y); its height if in contact.
+  double seed(double x, double y, NodeCounts& counts);
   double walk_corrected(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
                         NodeCounts& counts, bool& irregular);
   // How fast a corrected passage's height can fall along the row from its root t (at distance
@@ -62,6 +64,11 @@ class RowSweep {
   std::vector<Root> fresh_;
   std::vector<std::vector<Root>> later_, before_;  // per tooth, for walk_corrected
   std::vector<double> first_;
+  // Corrected: which passage gave the last node its height (pass, tooth, root), if known.
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  std::size_t win_pass_ = kNone;
+  int win_tooth_ = -1, walk_tooth_ = -1;  // walk_*: the last corrected walk's lowest passage
+  double win_t_ = 0, walk_t_ = 0;
   std::vector<double> roots_;
 };
 
