@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include "catw.hpp"
 
@@ -9,6 +11,15 @@ namespace topomill {
 
 namespace {
 constexpr double kDeg = M_PI / 180.0;
+constexpr double kMaxCells = 1e12;  // grid spacings along a side: far beyond any memory
+constexpr double kMaxPasses = 1e7;  // passes across the patch
+
+std::string format_count(double n) {
+  std::ostringstream os;
+  os.precision(3);
+  os << n;
+  return os.str();
+}
 
 double arc_of(const SurfaceShape& s, double y) {
   return s.arc_coordinate(y, s.height(y));
@@ -80,11 +91,19 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   // h wherever the patch sits up to lambda = 60 deg. Steeper, the Y spacing stays h/2 (a height
   // field over XY sees a near-vertical surface edge-on; finer Y spacing would make the paper's
   // time step, tied to it, vanish) and the resolution along the surface is coarser than h.
+  // Counts are checked as numbers before they become integers (a patch of 1e80 mm would
+  // overflow them); sizes that merely do not fit in memory are explained by check_memory.
+  const double dy_target = h * std::max(std::cos(lambda_c), 0.5);
+  for (const double cells : {size[0] / h, (y_hi - y_lo) / dy_target})
+    if (!(cells < kMaxCells))
+      throw InputError(region.where("size"), "region.size",
+                       "the patch would be " + format_count(cells) +
+                           " spacings long: expected fewer than 1e12 (shrink region.size or "
+                           "raise region.spacing)");
   Grid& g = L.grid;
   g.nx = static_cast<std::size_t>(std::llround(size[0] / h)) + 1;
   g.dx = size[0] / static_cast<double>(g.nx - 1);
   g.x0 = -size[0] / 2;
-  const double dy_target = h * std::max(std::cos(lambda_c), 0.5);
   g.ny = static_cast<std::size_t>(std::ceil((y_hi - y_lo) / dy_target)) + 1;
   if (g.ny >= 3) {
     g.dy = (y_hi - y_lo) / static_cast<double>(g.ny - 1);
@@ -109,6 +128,13 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   const double shift = pathp.number("phase_shift") * kDeg;
   const bool across = pathp.string("strategy") == "raster_across";
 
+  const double steps = across ? (L.s_hi - L.s_lo) / ae : size[0] / ae;
+  if (!(steps < kMaxPasses))
+    throw InputError(region.where("size"), "region.size",
+                     "the patch would need " + format_count(steps) + " passes at a step-over of " +
+                         std::to_string(ae) +
+                         " mm: expected fewer than 1e7 (shrink region.size or raise "
+                         "cutting.stepover)");
   std::vector<ToolPath::Pass> passes;
   double y_first = 0, y_last = 0;  // extent of the surface points the tool passes over
   if (!across) {
