@@ -81,19 +81,6 @@ TEST_CASE("sweep: cross product in one table, failures reported, reruns resume",
   CHECK(done_earlier == 3);
   CHECK(again.err.find("region.lambda=30__cutting.feed_per_tooth=0.1: ok") != std::string::npos);
   CHECK(read_csv_rows(out + "/sweep.csv").size() == 7);
-
-  // A case finished before its evaluator's library was rebuilt is run again: its result may be
-  // the old library's. (The summary is made older than the library, as a rebuild would.)
-  const std::string redone = out + "/cases/region.lambda=15__cutting.feed_per_tooth=0.05";
-  std::smatch m;
-  const std::string summary = testing::read_file(redone + "/summary.json");
-  const std::regex evaluator_library(R"re("evaluator"\s*:\s*\{\s*"library"\s*:\s*"([^"]+)")re");
-  REQUIRE(std::regex_search(summary, m, evaluator_library));
-  const fs::path library = m[1].str();
-  fs::last_write_time(redone + "/summary.json",
-                      fs::last_write_time(library) - std::chrono::seconds(10));
-  const auto third = testing::run_topomill(args);
-  CHECK(third.err.find("region.lambda=15__cutting.feed_per_tooth=0.05: ok") != std::string::npos);
 }
 
 TEST_CASE("sweep: an interrupted sweep stops promptly and a rerun finishes it", "[batch][kill]") {
