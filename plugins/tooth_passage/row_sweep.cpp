@@ -219,26 +219,39 @@ double RowSweep::seed(double x, double y, NodeCounts& counts) {
   if (win_pass_ == kNone) return INFINITY;
   PassState& st = state_[win_pass_];
   const PassageGeometry geo(s_, win_pass_, x, y, st.rho_lo, st.rho_hi);
-  std::vector<Root>& roots = st.roots[static_cast<std::size_t>(win_tooth_)];
-  Root* r = nullptr;
-  for (Root& c : roots)
-    if (std::abs(c.t - win_t_) < 0.25 * s_.rev &&
-        (!r || std::abs(c.t - win_t_) < std::abs(r->t - win_t_)))
-      r = &c;
+  Root* r = nearest(st.roots[static_cast<std::size_t>(win_tooth_)], win_t_, 0.25 * s_.rev);
   if (!r) return INFINITY;
-  double slope = r->slope;
+  Root solved{};
   Probe q{};
-  const double t = geo.crossing(win_tooth_, r->t + r->drift * (x - r->x), slope, q);
-  if (!PassageGeometry::converged(q) || q.rho <= s_.near_axis || t < 0 || t > geo.t_end() ||
-      !std::isfinite(q.height) || std::abs(t - r->t) > 0.25 * s_.rev)
+  if (!solve_root(geo, win_tooth_, r, 0.0, solved, q) || solved.t < 0 || solved.t > geo.t_end() ||
+      !std::isfinite(q.height) || std::abs(solved.t - r->t) > 0.25 * s_.rev)
     return INFINITY;
   ++counts.passages;
-  // The walk will find this passage solved here: it is not solved again.
-  r->drift = x != r->x ? (t - r->t) / (x - r->x) : r->drift;
-  r->t = t, r->slope = slope, r->x = x, r->height = q.height;
-  r->fall = fall_rate(win_pass_, t, q.rho, r->reach);
-  win_t_ = t;
+  *r = solved;  // the walk finds this passage solved here and does not solve it again
+  win_t_ = solved.t;
   return q.over ? q.height : INFINITY;
+}
+
+RowSweep::Root* RowSweep::nearest(std::vector<Root>& roots, double t, double reach) {
+  Root* match = nullptr;
+  const auto next = std::lower_bound(roots.begin(), roots.end(), t,
+                                     [](const Root& r, double v) { return r.t < v; });
+  for (auto it = next == roots.begin() ? next : next - 1; it != roots.end() && it <= next; ++it)
+    if (std::abs(it->t - t) < reach) reach = std::abs(it->t - t), match = &*it;
+  return match;
+}
+
+bool RowSweep::solve_root(const PassageGeometry& geo, int tooth, const Root* from, double guess,
+                          Root& r, Probe& q) const {
+  const double x = geo.x();
+  double slope = from ? from->slope : s_.omega;
+  const double t =
+      geo.crossing(tooth, from ? from->t + from->drift * (x - from->x) : guess, slope, q);
+  if (!PassageGeometry::converged(q) || q.rho <= s_.near_axis) return false;
+  r = Root{t, from && x != from->x ? (t - from->t) / (x - from->x) : 0.0, slope};
+  if (t >= 0 && t <= geo.t_end() && std::isfinite(q.height))
+    r.x = x, r.height = q.height, r.fall = fall_rate(geo.pass(), t, q.rho, r.reach);
+  return true;
 }
 
 // The pass as last walked, all at once: none of its passages can have fallen below `best` since
@@ -298,27 +311,20 @@ double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, doubl
   // The passage of `tooth` near `guess` (its root within `reach` of the time): skipped if its
   // bound allows, else solved; appended to `out`; false when irregular.
   auto visit = [&](int tooth, double guess, double reach, double& t, std::vector<Root>& out) {
-    const std::vector<Root>& prev = st.roots[static_cast<std::size_t>(tooth)];
-    const Root* match = nullptr;
-    const auto next = std::lower_bound(prev.begin(), prev.end(), guess,
-                                       [](const Root& r, double v) { return r.t < v; });
-    for (auto it = next == prev.begin() ? next : next - 1; it != prev.end() && it <= next; ++it)
-      if (std::abs(it->t - guess) < reach) reach = std::abs(it->t - guess), match = &*it;
+    const Root* match = nearest(st.roots[static_cast<std::size_t>(tooth)], guess, reach);
     if (match && std::abs(x - match->x) <= match->reach &&
         match->height - match->fall * std::abs(x - match->x) >= std::min(best, best_node)) {
       out.push_back(*match);
       t = match->t;
       return true;
     }
-    double slope = match ? match->slope : s_.omega;
+    Root r{};
     Probe q{};
-    t = geo.crossing(tooth, match ? match->t + match->drift * (x - match->x) : guess, slope, q);
-    if (!PassageGeometry::converged(q) || q.rho <= s_.near_axis) return false;
-    Root r{t, match && x != match->x ? (t - match->t) / (x - match->x) : 0.0, slope};
+    if (!solve_root(geo, tooth, match, guess, r, q)) return false;
+    t = r.t;
     if (t >= 0 && t <= t_end && std::isfinite(q.height)) {
       ++visited;
       if (q.over && q.height < best) best = q.height, walk_tooth_ = tooth, walk_t_ = t;
-      r.x = x, r.height = q.height, r.fall = fall_rate(geo.pass(), t, q.rho, r.reach);
     }
     out.push_back(r);
     return true;

@@ -52,6 +52,13 @@ class RowSweep {
   bool cannot_lower(const PassageGeometry& geo, const PassState& st, double best) const;
   // Corrected: the last node's lowest passage solved at (x, y); its height if in contact.
   double seed(double x, double y, NodeCounts& counts);
+  // The root of `roots` (sorted by time) nearest `t` within `reach`; null if none.
+  static Root* nearest(std::vector<Root>& roots, double t, double reach);
+  // Corrected: the passage of `tooth` solved at geo's node, started from `from` (the same
+  // passage at an earlier node) or else from `guess`; false when irregular. `q` is the probe
+  // there; `r` gets its height and bound when it lies within the pass and under the ball.
+  bool solve_root(const PassageGeometry& geo, int tooth, const Root* from, double guess, Root& r,
+                  Probe& q) const;
   double walk_corrected(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
                         NodeCounts& counts, bool& irregular);
   // How fast a corrected passage's height can fall along the row from its root t (at distance
