@@ -1,5 +1,9 @@
 // Mechanistic ball-end cutting force (Armarego; Lee and Altintas form), MODEL.md Eq. 18-21.
+#include <algorithm>
 #include <cmath>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
 #include <vector>
 
 #include "topomill/force_model.hpp"
@@ -25,10 +29,13 @@ class Armarego : public ForceModel {
     s.add_number("Kte", "Tangential edge coefficient").with_unit("N/mm").with_default(198.5);
     s.add_number("Kre", "Radial edge coefficient").with_unit("N/mm").with_default(110.1);
     s.add_number("Kae", "Axial edge coefficient").with_unit("N/mm").with_default(-42.4);
-    s.add_integer("elements", "Edge elements over the engaged polar-angle range, per tooth")
-        .at_least(1)
-        .at_most(100000)
-        .with_default(std::int64_t{200});
+    s.add_number("element_angle",
+                 "Polar-angle size of an edge element; elements are fixed on the tool (a quarter "
+                 "circle is divided into equal ones) and an element the CATW cuts counts in part")
+        .with_unit("deg")
+        .above(0.0009)
+        .at_most(10)
+        .with_default(0.2);
     return s;
   }
   explicit Armarego(const Params& p)
@@ -38,46 +45,42 @@ class Armarego : public ForceModel {
         kte_(p.number("Kte")),
         kre_(p.number("Kre")),
         kae_(p.number("Kae")),
-        elements_(static_cast<int>(p.integer("elements"))) {}
+        elements_(static_cast<std::size_t>(std::ceil(90.0 / p.number("element_angle") - 1e-9))) {}
 
-  // Per element the polar angle's sine and cosine (stepped by rotation), the lag and its
-  // sine and cosine are shared by all teeth; each tooth's azimuth is then a rotation of its own
-  // angle at this instant, so a sample costs the lag (a log for the loxodrome) and one sincos
-  // per element, not a sincos, a tan, a log, a sin and a sincos per element and tooth.
+  // The elements' polar angles are fixed on the tool, so everything that depends on the angle
+  // alone (its sine and cosine, the lag's, the edge's stretch) is tabulated once per tool; a
+  // sample costs each tooth's rotation and the chip per element, no transcendental function.
   CuttingForce evaluate(const ToolGeometry& tool, const CutState& st) const override {
-    const double R = tool.radius();
-    const double da = (st.alpha_max - st.alpha_min) / elements_;
+    const std::shared_ptr<const EdgeTable> table = edge_table(tool);
+    const double R = tool.radius(), h = table->step;
     const double sense = st.spindle_rate >= 0 ? 1.0 : -1.0;
-    const double tip = tool.min_polar_angle(), lag_tip = tool.lag(tip),
-                 slope_tip = tool.lag_slope(tip);
     const int teeth = tool.teeth();
-    std::vector<double> tooth_cos(static_cast<std::size_t>(teeth)), tooth_sin(tooth_cos.size());
+    if (teeth > kMaxTeeth) throw std::runtime_error("armarego: more than 64 teeth");
+    double tooth_cos[kMaxTeeth], tooth_sin[kMaxTeeth];
     for (int j = 0; j < teeth; ++j) {
       const double angle = tool.tooth_angle(j) + st.spindle_angle;
-      tooth_cos[static_cast<std::size_t>(j)] = std::cos(angle);
-      tooth_sin[static_cast<std::size_t>(j)] = std::sin(angle);
+      tooth_cos[j] = std::cos(angle), tooth_sin[j] = std::sin(angle);
     }
-    const double a0 = st.alpha_min + 0.5 * da;  // midpoint rule
-    const double step_c = std::cos(da), step_s = std::sin(da);
-    double sa = std::sin(a0), ca = std::cos(a0);
+    const double lo = std::max(0.0, st.alpha_min), hi = std::min(M_PI / 2, st.alpha_max);
     CuttingForce out;
+    if (!(hi > lo)) return out;
+    const auto first = static_cast<std::size_t>(std::floor(lo / h));
+    const auto last = std::min(table->elements.size(), static_cast<std::size_t>(std::ceil(hi / h)));
     double weight = 0, moment = 0;
-    for (int e = 0; e < elements_; ++e) {
-      if (e > 0) {
-        const double s_next = sa * step_c + ca * step_s;
-        ca = ca * step_c - sa * step_s, sa = s_next;
-      }
-      const double a = a0 + e * da;
-      const bool held = a < tip;  // the tip's stretch, where the lag is held
-      const double lag = held ? lag_tip : tool.lag_sc(sa, ca);
-      const double cl = std::cos(lag), sl = std::sin(lag);
-      const double db = R * da;
-      const double slope = sa * (held ? slope_tip : tool.lag_slope_sc(sa, ca));
-      const double ds = db * std::sqrt(1 + slope * slope);
-      for (std::size_t j = 0; j < tooth_cos.size(); ++j) {
-        const double cp = tooth_cos[j] * cl - tooth_sin[j] * sl;
-        const double sp = tooth_sin[j] * cl + tooth_cos[j] * sl;
-        const Vec3 n(sa * cp, sa * sp, -ca), m(ca * cp, ca * sp, sa), v(-sense * sp, sense * cp, 0);
+    for (std::size_t e = first; e < last; ++e) {
+      // An element the CATW's end cuts counts for its part inside, taken at that part's middle
+      // (the midpoint rule on the clipped element: second order in the element size).
+      const double a = static_cast<double>(e) * h, a_lo = std::max(a, lo),
+                   a_hi = std::min(a + h, hi);
+      if (!(a_hi > a_lo)) continue;
+      const bool whole = a_lo == a && a_hi == a + h;
+      const Element el = whole ? table->elements[e] : element(tool, 0.5 * (a_lo + a_hi));
+      const double db = R * (a_hi - a_lo), ds = db * el.stretch;
+      for (int j = 0; j < teeth; ++j) {
+        const double cp = tooth_cos[j] * el.cl - tooth_sin[j] * el.sl;
+        const double sp = tooth_sin[j] * el.cl + tooth_cos[j] * el.sl;
+        const Vec3 n(el.sa * cp, el.sa * sp, -el.ca), m(el.ca * cp, el.ca * sp, el.sa),
+            v(-sense * sp, sense * cp, 0);
         const double t = st.feed_per_tooth * st.feed_direction.dot(n);
         if (t <= 0) continue;  // not in cut: the element faces away from the feed
         if (st.in_material && !st.in_material(R * n)) continue;  // air: above or already cut
@@ -87,7 +90,7 @@ class Armarego : public ForceModel {
         out.force += f;
         const double w = f.norm();
         weight += w;
-        moment += w * R * (1 - ca);  // height of the element above the tip
+        moment += w * R * (1 - el.ca);  // height of the element above the tip
       }
     }
     out.load_centre = weight > 0 ? moment / weight : 0.0;
@@ -95,8 +98,49 @@ class Armarego : public ForceModel {
   }
 
  private:
+  static constexpr int kMaxTeeth = 64;  // the tool schemas' limit
+  struct Element {
+    double sa, ca;   // sine and cosine of the polar angle at the element's middle
+    double cl, sl;   // of the lag there (held below the tool's smallest polar angle)
+    double stretch;  // edge length per unit chip width: sqrt(1 + sin^2 a Psi'(a)^2)
+  };
+  struct EdgeTable {
+    const ToolGeometry* tool;
+    double fingerprint[6];  // what tells a tool at a reused address from the one tabulated
+    double step;
+    std::vector<Element> elements;
+  };
+  // The element at polar angle a (its middle).
+  static Element element(const ToolGeometry& tool, double a) {
+    const double held = std::max(a, tool.min_polar_angle());  // below it the lag is held
+    const double lag = tool.lag(held), slope = std::sin(a) * tool.lag_slope(held);
+    return {std::sin(a), std::cos(a), std::cos(lag), std::sin(lag), std::sqrt(1 + slope * slope)};
+  }
+  static void fingerprint(const ToolGeometry& tool, double* out) {
+    out[0] = tool.radius(), out[1] = tool.teeth(), out[2] = tool.min_polar_angle();
+    out[3] = tool.lag(0.3), out[4] = tool.lag(1.2), out[5] = tool.lag_slope(0.7);
+  }
+  // The table for `tool`, built when first asked (or when another tool comes).
+  std::shared_ptr<const EdgeTable> edge_table(const ToolGeometry& tool) const {
+    double print[6];
+    fingerprint(tool, print);
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (table_ && table_->tool == &tool && std::equal(print, print + 6, table_->fingerprint))
+      return table_;
+    auto t = std::make_shared<EdgeTable>();
+    t->tool = &tool;
+    std::copy(print, print + 6, t->fingerprint);
+    t->step = M_PI / 2 / static_cast<double>(elements_);
+    for (std::size_t e = 0; e < elements_; ++e)
+      t->elements.push_back(element(tool, (static_cast<double>(e) + 0.5) * t->step));
+    table_ = t;
+    return table_;
+  }
+
   double ktc_, krc_, kac_, kte_, kre_, kae_;
-  int elements_;
+  std::size_t elements_;  // over a quarter circle
+  mutable std::mutex mutex_;
+  mutable std::shared_ptr<const EdgeTable> table_;
 };
 
 }  // namespace topomill::plugins

@@ -32,7 +32,7 @@ TEST_CASE("the ball-end force matches MODEL.md's closed form", "[force]") {
                                                              {"Kte", 0},
                                                              {"Kre", 0},
                                                              {"Kae", 0},
-                                                             {"elements", 20000}});
+                                                             {"element_angle", 0.0045}});
   topomill::CutState st;
   st.feed_direction = {1, 0, 0};
   st.feed_per_tooth = 0.1;
@@ -92,4 +92,52 @@ TEST_CASE("the load centre is the force-weighted height of the engaged edge", "[
     CHECK(c.load_centre >= 5 * (1 - std::cos(0.3)) - 1e-12);
     CHECK(c.load_centre <= 5 * (1 - std::cos(0.6)) + 1e-12);
   }
+}
+
+// Elements are fixed on the tool; one the CATW's end cuts counts for the part inside. Without that
+// share the error would fall only as the element size (a whole element in or out at each end).
+TEST_CASE("elements cut by the CATW's ends count in part: second-order convergence", "[force]") {
+  auto tool = make_model<topomill::ToolGeometry>("ball_end_constant_lead",
+                                                 {{"radius", 5}, {"teeth", 1}, {"helix_angle", 0}});
+  topomill::CutState st;
+  st.feed_direction = {1, 0, 0};
+  st.feed_per_tooth = 0.1;
+  st.alpha_min = 0;
+  st.alpha_max = 0.3077;  // not on any of the grids below
+  st.spindle_rate = -1;
+  st.spindle_angle = M_PI / 2 - 1.2;
+  const auto want = closed_form(1.2, 5, 0.1, 2000, 800, 500, st.alpha_max);
+  double previous = 0;
+  for (double deg : {2.0, 1.0, 0.5}) {
+    auto force = make_model<topomill::ForceModel>("armarego", {{"Ktc", 2000},
+                                                               {"Krc", 800},
+                                                               {"Kac", 500},
+                                                               {"Kte", 0},
+                                                               {"Kre", 0},
+                                                               {"Kae", 0},
+                                                               {"element_angle", deg}});
+    const double error = (force->evaluate(*tool, st).force - want).norm();
+    if (previous > 0) CHECK(std::log2(previous / error) > 1.8);
+    previous = error;
+  }
+}
+
+// The force model tabulates the edge per tool; a second tool must get its own table.
+TEST_CASE("one force model serves two tools, each with its own edge", "[force]") {
+  auto force = make_model<topomill::ForceModel>("armarego", {});
+  auto reference = make_model<topomill::ForceModel>("armarego", {});
+  topomill::CutState st;
+  st.feed_direction = {0, 1, 0};
+  st.feed_per_tooth = 0.1;
+  st.alpha_min = 0.2;
+  st.alpha_max = 0.8;
+  st.spindle_rate = -1;
+  st.spindle_angle = 0.4;
+  for (double helix : {30.0, 10.0, 30.0}) {
+    auto tool = make_model<topomill::ToolGeometry>("ball_end_loxodrome",
+                                                   {{"radius", 5}, {"helix_angle", helix}});
+    auto fresh = make_model<topomill::ForceModel>("armarego", {});
+    CHECK(force->evaluate(*tool, st).force == fresh->evaluate(*tool, st).force);
+  }
+  (void)reference;
 }
