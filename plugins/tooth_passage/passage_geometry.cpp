@@ -55,6 +55,17 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
       piece_speed.back().emplace_back(std::hypot(d.x(), d.y()), std::abs(d.z()));
     }
     nominal_speed.push_back(centre.back().top_speed());
+    // The largest speeds over each run of kSpeedWindow + 1 pieces: the fall-rate bound asks for
+    // such a run at every root it bounds, where a loop over it cost as much as the rest.
+    const auto& pieces = piece_speed.back();
+    window_speed.emplace_back(pieces.size());
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      auto m = pieces[k];
+      for (std::size_t i = k + 1; i <= std::min(k + kSpeedWindow, pieces.size() - 1); ++i)
+        m.first = std::max(m.first, pieces[i].first),
+        m.second = std::max(m.second, pieces[i].second);
+      window_speed.back()[k] = m;
+    }
   }
 }
 
@@ -66,6 +77,10 @@ std::pair<double, double> PassageSetup::top_speed(std::size_t p, double ta, doub
   const auto last = static_cast<double>(pieces.size() - 1);
   const auto k0 = static_cast<std::size_t>(std::clamp(std::floor(ta / dt), 0.0, last));
   const auto k1 = static_cast<std::size_t>(std::clamp(std::floor(tb / dt), 0.0, last));
+  if (k1 == k0 + kSpeedWindow) {
+    const auto& w = window_speed[p][k0];
+    return {h + w.first, v + w.second};
+  }
   double ch = 0, cv = 0;
   for (std::size_t k = k0; k <= k1; ++k)
     ch = std::max(ch, pieces[k].first), cv = std::max(cv, pieces[k].second);

@@ -54,6 +54,9 @@ struct PassageSetup {
   // vertical (mm/s), and the nominal centre's top speeds: how fast the tool can move.
   std::vector<std::vector<std::pair<double, double>>> piece_speed;
   std::vector<std::pair<double, double>> nominal_speed;
+  // Per pass and piece k, the largest piece speeds over pieces k .. k + kSpeedWindow.
+  static constexpr std::size_t kSpeedWindow = 16;
+  std::vector<std::vector<std::pair<double, double>>> window_speed;
   // The centre's top horizontal and vertical speed over [ta, tb] on pass p.
   std::pair<double, double> top_speed(std::size_t p, double ta, double tb) const;
 

@@ -281,7 +281,7 @@ bool RowSweep::cannot_lower(const PassageGeometry& geo, const PassState& st, dou
 // axis sideways faster than the edge sweeps (|g_t| could vanish), there is no bound.
 double RowSweep::fall_rate(std::size_t p, double t, double rho, double& reach) const {
   constexpr double kReach = 0.05;  // mm along the row
-  const double w = 8 * s_.path->correction_step(p);
+  const double w = 0.5 * PassageSetup::kSpeedWindow * s_.path->correction_step(p);
   const auto [vxy, vz] = s_.top_speed(p, t - w, t + w);
   const double rho_lo = rho - vxy * w - kReach, rho_hi = rho + vxy * w + kReach;
   if (rho_lo <= 0 || rho_hi >= 0.95 * s_.R) return INFINITY;
