@@ -46,6 +46,7 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
       }
     }
     shift_lo.push_back(lo), shift_hi.push_back(hi);
+    lowest_centre.push_back(centre.back().lowest_z(0.0, path->pass(p).t_end));
     if (const double step = path->correction_step(p); step > 0)
       scan_samples = std::max(scan_samples, static_cast<int>(std::ceil(rev / step)));
     const auto& values = path->correction_samples(p).values;

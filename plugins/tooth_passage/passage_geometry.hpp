@@ -49,6 +49,7 @@ struct PassageSetup {
   // Per pass, the range of the correction over the pass (zero when ideal): wherever the
   // corrected centre is, it is within [shift_lo, shift_hi] of the nominal one.
   std::vector<Vec3> shift_lo, shift_hi;
+  std::vector<double> lowest_centre;  // per pass, a lower bound of the corrected centre's height
 
   // Per pass, the speed of the centre's correction on each of its linear pieces, horizontal and
   // vertical (mm/s), and the nominal centre's top speeds: how fast the tool can move.

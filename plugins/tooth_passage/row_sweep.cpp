@@ -109,10 +109,18 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
     // A corrected envelope wiggles: its floor (the nominal centre moved by the correction's
     // whole range) is a true bound with a single minimum; it rules out the passes that cannot
     // come close and ends the walk (walk_corrected).
+    // A pass whose floor was too high at an earlier node stays too high for a while: where the
+    // floor is below its height H there, the ball's lower cap is no steeper than R / (zc - H)
+    // (zc the centre's height), past the rim no steeper than 1, and the floor must climb
+    // from `best` to H between the two nodes.
+    if (!std::isnan(st.floor_x) &&
+        st.floor - floor_steepness(p, st.floor) * std::abs(x - st.floor_x) >= best)
+      return can_lower = false, INFINITY;
     if (cannot_lower(geo, st, best)) return can_lower = false, INFINITY;
     t_b = bottom([&](double t) { return geo.floor_envelope(t); }, geo, st, x, t0);
     if (std::isnan(t_b)) return INFINITY;
-    if (geo.floor_envelope(t_b) - 1e-9 >= best) return can_lower = false, INFINITY;
+    if (const double low = geo.floor_envelope(t_b) - 1e-9; low >= best)
+      return st.floor = low, st.floor_x = x, can_lower = false, INFINITY;
   }
   bool irregular = false;
   double h = ideal ? walk(geo, st, t_b, best, counts, irregular)
@@ -268,6 +276,11 @@ bool RowSweep::cannot_lower(const PassageGeometry& geo, const PassState& st, dou
       any = true;
     }
   return any && geo.floor_envelope(st.stop[0]) >= best && geo.floor_envelope(st.stop[1]) >= best;
+}
+
+double RowSweep::floor_steepness(std::size_t p, double below) const {
+  const double depth = s_.lowest_centre[p] - below;
+  return depth > 0 ? std::max(1.0, s_.R / depth) : INFINITY;
 }
 
 // On a corrected path a passage's height along the row, h(x) = E(t(x), x) (E the ball's surface

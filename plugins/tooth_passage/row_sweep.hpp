@@ -36,9 +36,10 @@ class RowSweep {
   struct PassState {
     bool active = false, have_bottom = false;
     double rho_lo = 0, rho_hi = 0;
-    double tb = 0, tb_x = 0, tb_rate = 0;              // last bottom, where, and its rate along x
-    double floor = 0, floor_x = NAN, floor_slope = 0;  // last too-high bottom, where, its slope
-    std::vector<std::vector<Root>> roots;              // per tooth, the last node's crossings
+    double tb = 0, tb_x = 0, tb_rate = 0;  // last bottom, where, and its rate along x
+    double floor = 0, floor_x = NAN,
+           floor_slope = 0;                // last too-high bottom, where, its slope (ideal)
+    std::vector<std::vector<Root>> roots;  // per tooth, the last node's crossings
     double stop[2] = {NAN, NAN};  // corrected: beyond these the floor is too high (earlier, later)
   };
 
@@ -61,6 +62,8 @@ class RowSweep {
                   Probe& q) const;
   double walk_corrected(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
                         NodeCounts& counts, bool& irregular);
+  // How fast pass p's floor, where below `below`, can change along the row (mm/mm).
+  double floor_steepness(std::size_t p, double below) const;
   // How fast a corrected passage's height can fall along the row from its root t (at distance
   // rho from the axis), and for how far (`reach`) that holds; infinite when no bound holds.
   double fall_rate(std::size_t pass, double t, double rho, double& reach) const;
