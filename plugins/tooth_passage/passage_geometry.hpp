@@ -106,6 +106,7 @@ class PassageGeometry {
 
   std::size_t pass() const { return pass_; }
   double x() const { return x_; }
+  double y() const { return y_; }
   double t_end() const { return s_.path->pass(pass_).t_end; }
 
   Probe probe(int tooth, double t) const {

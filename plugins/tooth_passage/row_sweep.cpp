@@ -116,7 +116,9 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
     if (!std::isnan(st.floor_x) &&
         st.floor - floor_steepness(p, st.floor) * std::abs(x - st.floor_x) >= best)
       return can_lower = false, INFINITY;
-    if (cannot_lower(geo, st, best)) return can_lower = false, INFINITY;
+    bool solved = false;
+    if (const double h = revisit(geo, st, best, counts, solved); !std::isnan(h))
+      return can_lower = solved, with_tip(geo, h, t0);
     t_b = bottom([&](double t) { return geo.floor_envelope(t); }, geo, st, x, t0);
     if (std::isnan(t_b)) return INFINITY;
     if (const double low = geo.floor_envelope(t_b) - 1e-9; low >= best)
@@ -132,7 +134,13 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
     for (auto& r : st.roots) r.clear();
     h = geo.walk(ideal ? geo.bottom_near(t0()) : t_b, roots_, counts.passages, best);
   }
-  if (std::abs((s_.along_y ? x : y) - s_.line[p]) < PassageGeometry::kOnAxis)
+  return with_tip(geo, h, t0);
+}
+
+template <class T0>
+double RowSweep::with_tip(const PassageGeometry& geo, double h, T0 t0) const {
+  const double key = s_.along_y ? geo.x() : geo.y();
+  if (std::abs(key - s_.line[geo.pass()]) < PassageGeometry::kOnAxis)
     h = std::min(h, geo.tip_height(t0()));
   return h;
 }
@@ -262,20 +270,34 @@ bool RowSweep::solve_root(const PassageGeometry& geo, int tooth, const Root* fro
   return true;
 }
 
-// The pass as last walked, all at once: none of its passages can have fallen below `best` since
-// (each within its bound's reach) and the floor still rules out everything beyond them.
-bool RowSweep::cannot_lower(const PassageGeometry& geo, const PassState& st, double best) const {
-  if (std::isnan(st.stop[0]) || !std::isfinite(best)) return false;
+// The pass as last walked, again: every passage between its stops is known, and one whose bound
+// fails (it may have fallen below `best` since it was solved) is solved again where it is; the
+// rest stay. NaN when that is not enough and the pass must be walked: no walk yet, the floor
+// at a stop no longer rules out what lies beyond, or a passage moved irregularly.
+double RowSweep::revisit(const PassageGeometry& geo, PassState& st, double best, NodeCounts& counts,
+                         bool& solved) {
+  if (std::isnan(st.stop[0]) || !std::isfinite(best)) return NAN;
+  if (geo.floor_envelope(st.stop[0]) < best || geo.floor_envelope(st.stop[1]) < best) return NAN;
   const double x = geo.x(), rev = s_.rev, t_end = geo.t_end();
+  double low = INFINITY;
   bool any = false;
-  for (const auto& roots : st.roots)
-    for (const Root& r : roots) {
+  for (int tooth = 0; tooth < s_.teeth; ++tooth)
+    for (Root& r : st.roots[static_cast<std::size_t>(tooth)]) {
       if (r.t < -rev / 4 || r.t > t_end + rev / 4) continue;  // beyond the pass, and stays there
-      if (!(std::abs(x - r.x) <= r.reach && r.height - r.fall * std::abs(x - r.x) >= best))
-        return false;
       any = true;
+      const double target = std::min(best, low);
+      if (std::abs(x - r.x) <= r.reach && r.height - r.fall * std::abs(x - r.x) >= target) continue;
+      Root again{};
+      Probe q{};
+      if (!solve_root(geo, tooth, &r, 0.0, again, q) || std::abs(again.t - r.t) > 0.25 * rev)
+        return NAN;
+      r = again, solved = true;
+      if (r.t >= 0 && r.t <= t_end && std::isfinite(q.height)) {
+        ++counts.passages;
+        if (q.over && q.height < low) low = q.height, walk_tooth_ = tooth, walk_t_ = r.t;
+      }
     }
-  return any && geo.floor_envelope(st.stop[0]) >= best && geo.floor_envelope(st.stop[1]) >= best;
+  return any ? low : NAN;
 }
 
 double RowSweep::floor_steepness(std::size_t p, double below) const {

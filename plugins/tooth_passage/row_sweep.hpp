@@ -50,7 +50,13 @@ class RowSweep {
   double bottom(F f, const PassageGeometry& geo, PassState& st, double x, T0 t0);
   double walk(const PassageGeometry& geo, PassState& st, double t_b, double best,
               NodeCounts& counts, bool& irregular);
-  bool cannot_lower(const PassageGeometry& geo, const PassState& st, double best) const;
+  // Corrected: the pass's lowest passage below `best` from its last walk's passages, solving
+  // again only those whose bound fails (`solved` says whether any was); NaN when it needs a walk.
+  double revisit(const PassageGeometry& geo, PassState& st, double best, NodeCounts& counts,
+                 bool& solved);
+  // h lowered to the tip's height when the node lies on the pass's line.
+  template <class T0>
+  double with_tip(const PassageGeometry& geo, double h, T0 t0) const;
   // Corrected: the last node's lowest passage solved at (x, y); its height if in contact.
   double seed(double x, double y, NodeCounts& counts);
   // The root of `roots` (sorted by time) nearest `t` within `reach`; null if none.
