@@ -47,8 +47,6 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     }
     shift_lo.push_back(lo), shift_hi.push_back(hi);
     lowest_centre.push_back(centre.back().lowest_z(0.0, path->pass(p).t_end));
-    if (const double step = path->correction_step(p); step > 0)
-      scan_samples = std::max(scan_samples, static_cast<int>(std::ceil(rev / step)));
     const auto& values = path->correction_samples(p).values;
     piece_speed.emplace_back();
     for (std::size_t k = 0; k + 1 < values.size(); ++k) {
@@ -148,8 +146,18 @@ bool PassageGeometry::crossings_near(int tooth, double guess, std::vector<double
   // come below `below` holds no crossing that matters and is not probed: near the axis that is
   // most of the window. Spans of 16 steps are ruled out first, then the steps of those that
   // are not.
-  const int kSamples = s_.scan_samples, kChunk = 16;
-  auto at = [&](int k) { return guess - s_.rev / 2 + s_.rev * k / kSamples; };
+  // Samples: evenly spaced on an ideal path; on a corrected one the correction's knots (between
+  // them the centre moves smoothly, at a knot its velocity jumps and g can turn back), and the
+  // window's ends.
+  const double w0 = guess - s_.rev / 2, w1 = guess + s_.rev / 2;
+  const double step = s_.path->correction_step(pass_);
+  const double k0 = step > 0 ? std::floor(w0 / step) + 1 : 0;  // the first knot after w0
+  const int knots = step > 0 ? static_cast<int>(std::ceil(w1 / step) - k0) : 0;  // before w1
+  const int kSamples = step > 0 ? knots + 1 : s_.scan_samples, kChunk = 16;
+  auto at = [&](int k) {
+    if (step <= 0) return w0 + s_.rev * k / kSamples;
+    return k == 0 ? w0 : k == kSamples ? w1 : (k0 + k - 1) * step;
+  };
   auto cannot_lower = [&](double ta, double tb) {
     const double rho = std::max(0.0, closest(ta, tb));
     return rho >= s_.R || table_.lowest_z(ta, tb) - std::sqrt(s_.R2 - rho * rho) >= below;
@@ -167,7 +175,17 @@ bool PassageGeometry::crossings_near(int tooth, double guess, std::vector<double
     }
     if (std::isnan(ga)) ga = probe(tooth, ta).g;
     const double gb = probe(tooth, tb).g;
-    if (crosses(ga, gb)) roots.push_back(bisect(tooth, ta, tb, ga));
+    // Where the axis passes the node within the step, the node's azimuth swings round fast
+    // enough that g can dip through zero and back between two samples: g is sampled at the
+    // closest approach too (the centre moving straight over a step).
+    const double tc = closest_time(ta, tb);
+    if (tc > ta && tc < tb) {
+      const double gc = probe(tooth, tc).g;
+      if (crosses(ga, gc)) roots.push_back(bisect(tooth, ta, tc, ga));
+      if (crosses(gc, gb)) roots.push_back(bisect(tooth, tc, tb, gc));
+    } else if (crosses(ga, gb)) {
+      roots.push_back(bisect(tooth, ta, tb, ga));
+    }
     ga = gb;
   }
   return false;

@@ -34,8 +34,8 @@ struct PassageSetup {
   double rev;        // one spindle revolution, s
   double period;     // one tooth period, s
   double near_axis;  // closer than this to the axis the node's azimuth turns fast (mm)
-  // Samples per revolution where the crossings are scanned for (near the axis): enough that a
-  // correction's linear piece is sampled at least once, so that roots its jerks make are seen.
+  // Samples per revolution where the crossings are scanned for near the axis on an ideal path
+  // (a corrected one is sampled at the correction's knots).
   int scan_samples;
   double reach;     // R plus the largest correction: farther across, a pass cannot touch
   double reach_xy;  // the largest horizontal correction (mm)
@@ -192,6 +192,16 @@ class PassageGeometry {
     const double u =
         len2 > 0 ? std::clamp(((x_ - a.x()) * ux + (y_ - a.y()) * uy) / len2, 0.0, 1.0) : 0.0;
     return std::hypot(x_ - a.x() - u * ux, y_ - a.y() - u * uy) - s_.reach_xy;
+  }
+
+  // When the axis, moving straight from its place at ta to its place at tb, is closest to the
+  // node (ta or tb when that is at an end).
+  double closest_time(double ta, double tb) const {
+    const Vec3 a = table_(ta), b = table_(tb);
+    const double ux = b.x() - a.x(), uy = b.y() - a.y(), len2 = ux * ux + uy * uy;
+    const double u =
+        len2 > 0 ? std::clamp(((x_ - a.x()) * ux + (y_ - a.y()) * uy) / len2, 0.0, 1.0) : 0.0;
+    return ta + u * (tb - ta);
   }
 
   // All crossings of one tooth within half a revolution of `guess` that can lie below `below`,
