@@ -5,7 +5,8 @@
 // walk stops as soon as the envelope, which has a single minimum, proves that no later passage
 // can go below the best height found. On a corrected path the floor takes the envelope's place
 // and every passage between its stops is visited, but one whose height, solved at an earlier
-// node, cannot have fallen below the best since is not solved again (walk_corrected). Anything
+// node, cannot have fallen below the best since is not solved again (walk_corrected); a pass
+// walked before is revisited in place, its failing passages solved again (revisit). Anything
 // irregular (a node near the tool's axis, a crossing that does not converge, passages closer
 // than half a revolution) is handed to the reference walk for that node and pass, so the result
 // is the reference's to round-off.
