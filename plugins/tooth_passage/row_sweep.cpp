@@ -5,6 +5,16 @@
 
 namespace topomill::plugins {
 
+namespace {
+// Whether a corrected passage, solved at an earlier node, is still at or above `target` at x by
+// its fall-rate bound (RowSweep::fall_rate).
+template <class Root>
+bool stays_above(const Root& r, double x, double target) {
+  const double moved = std::abs(x - r.x);
+  return moved <= r.reach && r.height - r.fall * moved >= target;
+}
+}  // namespace
+
 RowSweep::RowSweep(const PassageSetup& s)
     : s_(s),
       by_line_(s.line.size()),
@@ -286,7 +296,7 @@ double RowSweep::revisit(const PassageGeometry& geo, PassState& st, double best,
       if (r.t < -rev / 4 || r.t > t_end + rev / 4) continue;  // beyond the pass, and stays there
       any = true;
       const double target = std::min(best, low);
-      if (std::abs(x - r.x) <= r.reach && r.height - r.fall * std::abs(x - r.x) >= target) continue;
+      if (stays_above(r, x, target)) continue;
       Root again{};
       Probe q{};
       if (!solve_root(geo, tooth, &r, 0.0, again, q) || std::abs(again.t - r.t) > 0.25 * rev)
@@ -347,8 +357,7 @@ double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, doubl
   // bound allows, else solved; appended to `out`; false when irregular.
   auto visit = [&](int tooth, double guess, double reach, double& t, std::vector<Root>& out) {
     const Root* match = nearest(st.roots[static_cast<std::size_t>(tooth)], guess, reach);
-    if (match && std::abs(x - match->x) <= match->reach &&
-        match->height - match->fall * std::abs(x - match->x) >= std::min(best, best_node)) {
+    if (match && stays_above(*match, x, std::min(best, best_node))) {
       out.push_back(*match);
       t = match->t;
       return true;

@@ -38,8 +38,8 @@ class RowSweep {
     bool active = false, have_bottom = false;
     double rho_lo = 0, rho_hi = 0;
     double tb = 0, tb_x = 0, tb_rate = 0;  // last bottom, where, and its rate along x
-    double floor = 0, floor_x = NAN,
-           floor_slope = 0;                // last too-high bottom, where, its slope (ideal)
+    double floor = 0, floor_x = NAN;       // the last bottom found too high, and where
+    double floor_slope = 0;                // ideal: how fast that bottom can fall along the row
     std::vector<std::vector<Root>> roots;  // per tooth, the last node's crossings
     double stop[2] = {NAN, NAN};  // corrected: beyond these the floor is too high (earlier, later)
   };

@@ -21,24 +21,36 @@ Eigen::Vector3d closed_form(double theta, double R, double fz, double ktc, doubl
           ktc * fz * ap * st * st - fz * R * st * ct * (krc * s2 + kac * c1),
           fz * R * st * (krc * c1 - kac * s2)};
 }
+// The closed form's setting: one zero-helix tooth, no edge forces, a flat slot fed along +X
+// (clockwise spindle: theta clockwise from +Y is phi = 90 deg - theta from +X).
+auto closed_form_tool() {
+  return make_model<topomill::ToolGeometry>("ball_end_constant_lead",
+                                            {{"radius", 5}, {"teeth", 1}, {"helix_angle", 0}});
+}
+auto closed_form_force(double element_angle) {
+  return make_model<topomill::ForceModel>("armarego", {{"Ktc", 2000},
+                                                       {"Krc", 800},
+                                                       {"Kac", 500},
+                                                       {"Kte", 0},
+                                                       {"Kre", 0},
+                                                       {"Kae", 0},
+                                                       {"element_angle", element_angle}});
+}
+topomill::CutState cut_state(const topomill::Vec3& feed, double alpha_min, double alpha_max) {
+  topomill::CutState st;
+  st.feed_direction = feed;
+  st.feed_per_tooth = 0.1;
+  st.alpha_min = alpha_min;
+  st.alpha_max = alpha_max;
+  st.spindle_rate = -1;
+  return st;
+}
 }  // namespace
 
 TEST_CASE("the ball-end force matches MODEL.md's closed form", "[force]") {
-  auto tool = make_model<topomill::ToolGeometry>("ball_end_constant_lead",
-                                                 {{"radius", 5}, {"teeth", 1}, {"helix_angle", 0}});
-  auto force = make_model<topomill::ForceModel>("armarego", {{"Ktc", 2000},
-                                                             {"Krc", 800},
-                                                             {"Kac", 500},
-                                                             {"Kte", 0},
-                                                             {"Kre", 0},
-                                                             {"Kae", 0},
-                                                             {"element_angle", 0.0045}});
-  topomill::CutState st;
-  st.feed_direction = {1, 0, 0};
-  st.feed_per_tooth = 0.1;
-  st.alpha_min = 0;
-  st.alpha_max = M_PI / 2;
-  st.spindle_rate = -1;  // clockwise: theta clockwise from +Y is phi = 90 deg - theta from +X
+  auto tool = closed_form_tool();
+  auto force = closed_form_force(0.0045);
+  topomill::CutState st = cut_state({1, 0, 0}, 0, M_PI / 2);
   // MODEL.md's printed values, then the closed form at other angles and engagements.
   st.spindle_angle = 0;  // theta = 90 deg
   auto f = force->evaluate(*tool, st).force;
@@ -79,12 +91,7 @@ TEST_CASE("Eq. 20's tangential, radial and axial directions are orthonormal", "[
 TEST_CASE("the load centre is the force-weighted height of the engaged edge", "[force]") {
   auto tool = make_model<topomill::ToolGeometry>("ball_end_loxodrome", {{"radius", 5}});
   auto force = make_model<topomill::ForceModel>("armarego", {});
-  topomill::CutState st;
-  st.feed_direction = {0, 1, 0};
-  st.feed_per_tooth = 0.1;
-  st.alpha_min = 0.3;
-  st.alpha_max = 0.6;
-  st.spindle_rate = -1;
+  topomill::CutState st = cut_state({0, 1, 0}, 0.3, 0.6);
   for (double spindle : {0.0, 1.0, 2.0}) {
     st.spindle_angle = spindle;
     const auto c = force->evaluate(*tool, st);
@@ -97,25 +104,13 @@ TEST_CASE("the load centre is the force-weighted height of the engaged edge", "[
 // Elements are fixed on the tool; one the CATW's end cuts counts for the part inside. Without that
 // share the error would fall only as the element size (a whole element in or out at each end).
 TEST_CASE("elements cut by the CATW's ends count in part: second-order convergence", "[force]") {
-  auto tool = make_model<topomill::ToolGeometry>("ball_end_constant_lead",
-                                                 {{"radius", 5}, {"teeth", 1}, {"helix_angle", 0}});
-  topomill::CutState st;
-  st.feed_direction = {1, 0, 0};
-  st.feed_per_tooth = 0.1;
-  st.alpha_min = 0;
-  st.alpha_max = 0.3077;  // not on any of the grids below
-  st.spindle_rate = -1;
+  auto tool = closed_form_tool();
+  topomill::CutState st = cut_state({1, 0, 0}, 0, 0.3077);  // not on any of the grids below
   st.spindle_angle = M_PI / 2 - 1.2;
   const auto want = closed_form(1.2, 5, 0.1, 2000, 800, 500, st.alpha_max);
   double previous = 0;
   for (double deg : {2.0, 1.0, 0.5}) {
-    auto force = make_model<topomill::ForceModel>("armarego", {{"Ktc", 2000},
-                                                               {"Krc", 800},
-                                                               {"Kac", 500},
-                                                               {"Kte", 0},
-                                                               {"Kre", 0},
-                                                               {"Kae", 0},
-                                                               {"element_angle", deg}});
+    auto force = closed_form_force(deg);
     const double error = (force->evaluate(*tool, st).force - want).norm();
     if (previous > 0) CHECK(std::log2(previous / error) > 1.8);
     previous = error;
@@ -125,13 +120,7 @@ TEST_CASE("elements cut by the CATW's ends count in part: second-order convergen
 // The force model tabulates the edge per tool; a second tool must get its own table.
 TEST_CASE("one force model serves two tools, each with its own edge", "[force]") {
   auto force = make_model<topomill::ForceModel>("armarego", {});
-  auto reference = make_model<topomill::ForceModel>("armarego", {});
-  topomill::CutState st;
-  st.feed_direction = {0, 1, 0};
-  st.feed_per_tooth = 0.1;
-  st.alpha_min = 0.2;
-  st.alpha_max = 0.8;
-  st.spindle_rate = -1;
+  topomill::CutState st = cut_state({0, 1, 0}, 0.2, 0.8);
   st.spindle_angle = 0.4;
   for (double helix : {30.0, 10.0, 30.0}) {
     auto tool = make_model<topomill::ToolGeometry>("ball_end_loxodrome",
@@ -139,5 +128,4 @@ TEST_CASE("one force model serves two tools, each with its own edge", "[force]")
     auto fresh = make_model<topomill::ForceModel>("armarego", {});
     CHECK(force->evaluate(*tool, st).force == fresh->evaluate(*tool, st).force);
   }
-  (void)reference;
 }
