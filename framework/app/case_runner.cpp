@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "code_fingerprint.hpp"
 #include "distribution.hpp"
 #include "interrupt.hpp"
 #include "io/atomic_file.hpp"
@@ -60,7 +61,18 @@ bool already_done(const fs::path& dir, const std::vector<std::string>& args,
   std::error_code ec;
   if (!fs::exists(summary) || slurp(args_file(dir)) != joined(args)) return false;
   // An edited scene invalidates earlier results.
-  return fs::last_write_time(summary, ec) >= fs::last_write_time(scene, ec);
+  if (fs::last_write_time(summary, ec) < fs::last_write_time(scene, ec)) return false;
+  // So does other code: a rebuilt program, core or plugin library (by their bytes, not times).
+  try {
+    const json j = json::parse(slurp(summary));
+    std::vector<std::string> libraries;
+    for (const auto& [slot, entry] : j.at("plugins").items())
+      libraries.push_back(entry.at("library").get<std::string>());
+    return j.at("topomill").at("code_fingerprint").get<std::string>() ==
+           code_fingerprint(libraries);
+  } catch (const json::exception&) {
+    return false;
+  }
 }
 
 CaseResult from_summary(const std::string& id, const fs::path& dir) {

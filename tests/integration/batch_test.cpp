@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <sstream>
 #include <thread>
@@ -81,6 +82,20 @@ TEST_CASE("sweep: cross product in one table, failures reported, reruns resume",
   CHECK(done_earlier == 3);
   CHECK(again.err.find("region.lambda=30__cutting.feed_per_tooth=0.1: ok") != std::string::npos);
   CHECK(read_csv_rows(out + "/sweep.csv").size() == 7);
+
+  // A case finished by other code (its summary's fingerprint of the program and libraries is
+  // not that of the code here: a rebuild changed them) is run again; the rest resume.
+  const std::string redone = out + "/cases/region.lambda=15__cutting.feed_per_tooth=0.05";
+  std::string summary = testing::read_file(redone + "/summary.json");
+  const std::regex fingerprint(R"re("code_fingerprint"\s*:\s*"[0-9a-f]{8}")re");
+  REQUIRE(std::regex_search(summary, fingerprint));
+  summary = std::regex_replace(summary, fingerprint, "\"code_fingerprint\" : \"00000000\"");
+  std::ofstream(redone + "/summary.json", std::ios::trunc) << summary;
+  const auto third = testing::run_topomill(args);
+  CHECK(third.err.find("region.lambda=15__cutting.feed_per_tooth=0.05: ok") != std::string::npos);
+  std::size_t resumed = 0;
+  for (pos = 0; (pos = third.err.find("done earlier", pos)) != std::string::npos; ++pos) ++resumed;
+  CHECK(resumed == 3);
 }
 
 TEST_CASE("sweep: an interrupted sweep stops promptly and a rerun finishes it", "[batch][kill]") {

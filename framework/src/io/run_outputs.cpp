@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "code_fingerprint.hpp"
 #include "describe.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
@@ -104,11 +105,13 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
 
   toml::table plugins;
+  std::vector<std::string> libraries;
   for (const auto& [table, st] : scene.slots) {
     if (!st.model) continue;
     plugins.insert(table, toml::table{{"model", st.plugin},
                                       {"library", st.model->library->path},
                                       {"library_version", st.model->library->version}});
+    libraries.push_back(st.model->library->path);
   }
   toml::table work;
   for (const auto& [k, v] : result.work) work.insert(k, static_cast<std::int64_t>(v));
@@ -117,8 +120,9 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
   for (const auto& f : files) file_list.push_back(f);
 
   toml::table root{
-      {"topomill",
-       toml::table{{"version", kVersion}, {"abi", static_cast<std::int64_t>(kAbiVersion)}}},
+      {"topomill", toml::table{{"version", kVersion},
+                               {"abi", static_cast<std::int64_t>(kAbiVersion)},
+                               {"code_fingerprint", code_fingerprint(libraries)}}},
       {"scene", toml::table{{"file", scene.file}, {"name", scene.table("scene").string("name")}}},
       {"resolved_scene", scene.to_toml()},
       {"plugins", std::move(plugins)},
