@@ -170,9 +170,13 @@ std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOp
     r.rank = mpi.rank();
     ++finished;
     if (!o.progress) return;
-    std::cerr << (mpi.ranks() > 1 ? "rank " + std::to_string(mpi.rank()) + " " : "") << "["
-              << finished << "/" << mine.size() << "] " << r.id << ": "
-              << (r.ok ? (r.resumed ? "done earlier" : "ok") : "FAILED: " + r.error) << "\n";
+    // One write a line: std::cerr writes each piece at once, and under mpirun the ranks' pieces
+    // would interleave within lines.
+    std::ostringstream line;
+    line << (mpi.ranks() > 1 ? "rank " + std::to_string(mpi.rank()) + " " : "") << "[" << finished
+         << "/" << mine.size() << "] " << r.id << ": "
+         << (r.ok ? (r.resumed ? "done earlier" : "ok") : "FAILED: " + r.error) << "\n";
+    std::cerr << line.str() << std::flush;
   };
   auto collect = [&](pid_t pid, int status) {
     const std::size_t i = running.at(pid);
