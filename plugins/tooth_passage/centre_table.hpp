@@ -72,8 +72,6 @@ class CentreTable {
     return {1.05 * h, 1.05 * v};
   }
 
-  std::size_t bytes() const { return knots_.size() * sizeof(Vec3) + cubic_.size() * sizeof(Cubic); }
-
  private:
   void build(double t_lo, double t_hi, double dt) {
     t0_ = t_lo - 2 * dt;

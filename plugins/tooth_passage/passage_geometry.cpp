@@ -19,7 +19,6 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
       rev(kTwoPi / std::abs(omega)),
       period(rev / rq.tool->teeth()),
       near_axis(10 * rq.path->feed_speed() / std::abs(omega)),
-      scan_samples(48),
       reach(R + rq.path->max_correction()),
       reach_xy(std::sqrt(2.0) * rq.path->max_correction()),
       margin(margin_),
@@ -141,23 +140,23 @@ bool PassageGeometry::crossings_near(int tooth, double guess, std::vector<double
     roots.push_back(t);
     return true;
   }
-  // A span over which the ball's surface above the node (at least the centre's lowest height
-  // less the ball's depth below its centre at the node's least distance from the axis) cannot
-  // come below `below` holds no crossing that matters and is not probed: near the axis that is
-  // most of the window. Spans of 16 steps are ruled out first, then the steps of those that
-  // are not.
-  // Samples: evenly spaced on an ideal path; on a corrected one the correction's knots (between
-  // them the centre moves smoothly, at a knot its velocity jumps and g can turn back), and the
-  // window's ends.
+  // Samples: 48 a revolution on an ideal path; on a corrected one the correction's knots
+  // (between them the centre moves smoothly, at a knot its velocity jumps and g can turn back),
+  // and the window's ends.
   const double w0 = guess - s_.rev / 2, w1 = guess + s_.rev / 2;
   const double step = s_.path->correction_step(pass_);
   const double k0 = step > 0 ? std::floor(w0 / step) + 1 : 0;  // the first knot after w0
   const int knots = step > 0 ? static_cast<int>(std::ceil(w1 / step) - k0) : 0;  // before w1
-  const int kSamples = step > 0 ? knots + 1 : s_.scan_samples, kChunk = 16;
+  const int kSamples = step > 0 ? knots + 1 : 48, kChunk = 16;
   auto at = [&](int k) {
     if (step <= 0) return w0 + s_.rev * k / kSamples;
     return k == 0 ? w0 : k == kSamples ? w1 : (k0 + k - 1) * step;
   };
+  // A span over which the ball's surface above the node (at least the centre's lowest height
+  // less the ball's depth below its centre at the node's least distance from the axis) cannot
+  // come below `below` holds no crossing that matters and is not probed: near the axis that is
+  // most of the window. Spans of 16 samples are ruled out first, then the steps of those that
+  // are not.
   auto cannot_lower = [&](double ta, double tb) {
     const double rho = std::max(0.0, closest(ta, tb));
     return rho >= s_.R || table_.lowest_z(ta, tb) - std::sqrt(s_.R2 - rho * rho) >= below;

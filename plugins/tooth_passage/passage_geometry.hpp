@@ -34,11 +34,8 @@ struct PassageSetup {
   double rev;        // one spindle revolution, s
   double period;     // one tooth period, s
   double near_axis;  // closer than this to the axis the node's azimuth turns fast (mm)
-  // Samples per revolution where the crossings are scanned for near the axis on an ideal path
-  // (a corrected one is sampled at the correction's knots).
-  int scan_samples;
-  double reach;     // R plus the largest correction: farther across, a pass cannot touch
-  double reach_xy;  // the largest horizontal correction (mm)
+  double reach;      // R plus the largest correction: farther across, a pass cannot touch
+  double reach_xy;   // the largest horizontal correction (mm)
   double margin, kappa;
   int iterations, teeth;
   bool along_y;
@@ -188,20 +185,15 @@ class PassageGeometry {
   // runs straight over the surface's plan (raster along a line), less the correction's reach.
   double closest(double ta, double tb) const {
     const Vec3 a = table_.nominal(ta), b = table_.nominal(tb);
-    const double ux = b.x() - a.x(), uy = b.y() - a.y(), len2 = ux * ux + uy * uy;
-    const double u =
-        len2 > 0 ? std::clamp(((x_ - a.x()) * ux + (y_ - a.y()) * uy) / len2, 0.0, 1.0) : 0.0;
-    return std::hypot(x_ - a.x() - u * ux, y_ - a.y() - u * uy) - s_.reach_xy;
+    const double u = nearest_on_chord(a, b);
+    return std::hypot(x_ - a.x() - u * (b.x() - a.x()), y_ - a.y() - u * (b.y() - a.y())) -
+           s_.reach_xy;
   }
 
   // When the axis, moving straight from its place at ta to its place at tb, is closest to the
   // node (ta or tb when that is at an end).
   double closest_time(double ta, double tb) const {
-    const Vec3 a = table_(ta), b = table_(tb);
-    const double ux = b.x() - a.x(), uy = b.y() - a.y(), len2 = ux * ux + uy * uy;
-    const double u =
-        len2 > 0 ? std::clamp(((x_ - a.x()) * ux + (y_ - a.y()) * uy) / len2, 0.0, 1.0) : 0.0;
-    return ta + u * (tb - ta);
+    return ta + nearest_on_chord(table_(ta), table_(tb)) * (tb - ta);
   }
 
   // All crossings of one tooth within half a revolution of `guess` that can lie below `below`,
@@ -232,6 +224,12 @@ class PassageGeometry {
               double below = INFINITY) const;
 
  private:
+  // Where on the chord from a to b (0 to 1, in plan) the node's foot lies.
+  double nearest_on_chord(const Vec3& a, const Vec3& b) const {
+    const double ux = b.x() - a.x(), uy = b.y() - a.y(), len2 = ux * ux + uy * uy;
+    return len2 > 0 ? std::clamp(((x_ - a.x()) * ux + (y_ - a.y()) * uy) / len2, 0.0, 1.0) : 0.0;
+  }
+
   const PassageSetup& s_;
   const CentreTable& table_;
   std::size_t pass_;

@@ -42,7 +42,9 @@ class ToothPassage : public TopographyEvaluator {
   explicit ToothPassage(const Params& p)
       : margin_(p.number("catw_margin")),
         iterations_(static_cast<int>(p.integer("iterations"))),
-        walk_(p.string("walk")) {}
+        walk_(p.string("walk") == "row"    ? Walk::Row
+              : p.string("walk") == "node" ? Walk::Node
+                                           : Walk::Scan) {}
 
   void evaluate(const EvaluationRequest& rq, HeightMap& map, WorkCounts& counts) const override {
     const PassageSetup setup(rq, margin_, iterations_);
@@ -67,11 +69,11 @@ class ToothPassage : public TopographyEvaluator {
       // machine takes fewer; each row is computed alone, so the bits do not depend on who.
       for (std::size_t j = next_row++; j < g.ny && !rq.stopped(); j = next_row++) {
         double* z = &map.at(0, j);
-        if (walk_ == "row") {
+        if (walk_ == Walk::Row) {
           sweep.row(g.y(j), xs, z, mine);
         } else {
           for (std::size_t i = 0; i < g.nx; ++i) {
-            const double low = walk_ == "node"
+            const double low = walk_ == Walk::Node
                                    ? node_height_reference(setup, xs[i], g.y(j), mine, order, roots)
                                    : node_height_scan(setup, xs[i], g.y(j), scan_step, mine);
             if (low < z[i]) z[i] = low, ++mine.updates;
@@ -91,13 +93,13 @@ class ToothPassage : public TopographyEvaluator {
     counts["nodes"] = g.size();
     counts["tooth_passages"] = total.passages;
     counts["updates"] = total.updates;
-    if (walk_ == "row") counts["fallbacks"] = total.fallbacks;
+    if (walk_ == Walk::Row) counts["fallbacks"] = total.fallbacks;
   }
 
  private:
   double margin_;
   int iterations_;
-  std::string walk_;
+  enum class Walk { Row, Node, Scan } walk_;  // the schema's choice, read once
 };
 
 }  // namespace topomill::plugins
