@@ -43,6 +43,33 @@ class CentreTable {
     return c[0] + s * (c[1] + s * (c[2] + s * c[3]));
   }
 
+  // The centre's velocity (mm/s): the nominal cubic's derivative plus the correction's slope on
+  // its linear piece (at a knot, the piece that starts there).
+  Vec3 velocity(double t) const {
+    Vec3 v = nominal_velocity(t);
+    const auto& c = *correction_;
+    if (c.values.size() >= 2 && t >= 0) {
+      const auto k = static_cast<std::size_t>(t / c.dt);
+      if (k + 1 < c.values.size()) v += (c.values[k + 1] - c.values[k]) / c.dt;
+    }
+    return v;
+  }
+  Vec3 nominal_velocity(double t) const {
+    const double u = (t - t0_) * inv_dt_;
+    const double k = std::floor(u);
+    if (!(k >= 1 && k + 2 < static_cast<double>(knots_.size()))) {
+      const double h = 1e-6 / inv_dt_;  // beyond the table (never in practice): the path itself
+      return (path_->nominal_centre(pass_, t + h) - path_->nominal_centre(pass_, t - h)) / (2 * h);
+    }
+    const Cubic& c = cubic_[static_cast<std::size_t>(k)];
+    const double s = u - k;
+    return (c[1] + s * (2 * c[2] + 3 * s * c[3])) * inv_dt_;
+  }
+  // An upper bound of the nominal centre's acceleration in plan (mm/s^2): the cubics' second
+  // derivatives at their ends (where a cubic's, linear, is largest), with a margin. The
+  // correction adds none within its linear pieces.
+  double accel_xy() const { return accel_xy_; }
+
   // A lower bound of the centre's height over a short span [ta, tb]: the nominal part's lower
   // end less twice its bend (which the midpoint measures: for a parabola the chord lies
   // (za + zb - 2 zm) / 2 above the lowest point), plus the correction's lowest, which, linear
@@ -87,6 +114,11 @@ class CentreTable {
       const Vec3 &m = knots_[i - 1], &a = knots_[i], &b = knots_[i + 1], &c = knots_[i + 2];
       cubic_[i] = {a, -m / 3 - a / 2 + b - c / 6, m / 2 - a + b / 2, (c - m) / 6 + (a - b) / 2};
     }
+    accel_xy_ = 0;
+    for (std::size_t i = 1; i + 2 < n; ++i)
+      for (const Vec3& d2 : {Vec3(2 * cubic_[i][2]), Vec3(2 * cubic_[i][2] + 6 * cubic_[i][3])})
+        accel_xy_ = std::max(accel_xy_, std::hypot(d2.x(), d2.y()) * inv_dt_ * inv_dt_);
+    accel_xy_ = 1.25 * accel_xy_ + 1e-9;
   }
   double max_midpoint_error() const {
     double worst = 0;
@@ -100,7 +132,7 @@ class CentreTable {
   const ToolPath* path_;
   std::size_t pass_;
   const ToolPath::Correction* correction_;
-  double t0_ = 0, inv_dt_ = 1;
+  double t0_ = 0, inv_dt_ = 1, accel_xy_ = 0;
   std::vector<Vec3> knots_;
   using Cubic = std::array<Vec3, 4>;  // coefficients of s^0 .. s^3
   std::vector<Cubic> cubic_;

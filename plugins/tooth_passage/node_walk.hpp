@@ -13,9 +13,19 @@ namespace topomill::plugins {
 
 // Work done by one thread, added up at the end (summary.json's work counts).
 struct NodeCounts {
-  std::uint64_t passages = 0;   // tooth passages whose height was read
-  std::uint64_t fallbacks = 0;  // node-pass pairs handed to the reference walk
-  std::uint64_t updates = 0;    // nodes lowered
+  std::uint64_t passages = 0;       // tooth passages whose height was read
+  std::uint64_t fallbacks = 0;      // node-pass pairs handed to the reference walk
+  std::uint64_t exact_windows = 0;  // row walk: revolutions solved exactly (near the axis)
+  std::uint64_t updates = 0;        // nodes lowered
+  // Row walk, per node, the route it took: every passage followed from the node before; some
+  // revolution solved exactly in place; some pass handed to the reference walk.
+  std::uint64_t nodes_followed = 0, nodes_exact = 0, nodes_fallback = 0;
+  NodeCounts& operator+=(const NodeCounts& o) {
+    passages += o.passages, fallbacks += o.fallbacks, exact_windows += o.exact_windows;
+    updates += o.updates, nodes_followed += o.nodes_followed, nodes_exact += o.nodes_exact;
+    nodes_fallback += o.nodes_fallback;
+    return *this;
+  }
 };
 
 // The lowest edge height over (x, y), +inf if none; `order` and `roots` are the caller's

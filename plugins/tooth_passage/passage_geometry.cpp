@@ -5,6 +5,10 @@
 namespace topomill::plugins {
 
 namespace {
+// |(x, y)| without hypot's care for overflow, which costs here and is not needed (mm and mm/s).
+inline double norm(double x, double y) {
+  return std::sqrt(x * x + y * y);
+}
 // Interpolated centres agree with the path to a nanometre's tenth: far below any grid.
 constexpr double kTableTolerance = 1e-7;  // mm
 }  // namespace
@@ -18,14 +22,14 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
       speed(std::max(rq.path->feed_speed(), 1e-12)),
       rev(kTwoPi / std::abs(omega)),
       period(rev / rq.tool->teeth()),
-      near_axis(10 * rq.path->feed_speed() / std::abs(omega)),
       reach(R + rq.path->max_correction()),
       reach_xy(std::sqrt(2.0) * rq.path->max_correction()),
       margin(margin_),
       kappa(rq.kappa),
       iterations(iterations_),
       teeth(rq.tool->teeth()),
-      along_y(rq.path->feed_axis() == ToolPath::FeedAxis::Y) {
+      along_y(rq.path->feed_axis() == ToolPath::FeedAxis::Y),
+      lag_shape(*rq.tool) {
   for (int j = 0; j < teeth; ++j) tooth_angle.push_back(tool->tooth_angle(j));
   sin_tip = std::sin(tool->min_polar_angle());
   lag_tip = tool->lag(tool->min_polar_angle());
@@ -125,69 +129,172 @@ double PassageGeometry::crossing(int tooth, double t, double& slope, Probe& last
   return t;
 }
 
-// Usually the secant step finds the one crossing there; where the axis comes close to the node
-// anywhere in the window (the node's azimuth then turns fast, at feed / distance, and several
-// crossings may come in one passage) or where it fails, the window is scanned for every sign
-// change of g (skipping the jumps of its wrap at +-pi) and each bracket bisected.
-bool PassageGeometry::crossings_near(int tooth, double guess, std::vector<double>& roots,
-                                     double below) const {
-  roots.clear();
-  double slope = s_.omega;
-  Probe last{};
-  const double t = crossing(tooth, guess, slope, last);
-  if (converged(last) && last.rho > s_.near_axis &&
-      closest(guess - s_.rev / 2, guess + s_.rev / 2) > s_.near_axis) {
-    roots.push_back(t);
-    return true;
-  }
-  // Samples: 48 a revolution on an ideal path; on a corrected one the correction's knots
-  // (between them the centre moves smoothly, at a knot its velocity jumps and g can turn back),
-  // and the window's ends.
-  const double w0 = guess - s_.rev / 2, w1 = guess + s_.rev / 2;
+PassageGeometry::Span PassageGeometry::span(double a, double b) const {
   const double step = s_.path->correction_step(pass_);
-  const double k0 = step > 0 ? std::floor(w0 / step) + 1 : 0;  // the first knot after w0
-  const int knots = step > 0 ? static_cast<int>(std::ceil(w1 / step) - k0) : 0;  // before w1
-  const int kSamples = step > 0 ? knots + 1 : 48, kChunk = 16;
-  auto at = [&](int k) {
-    if (step <= 0) return w0 + s_.rev * k / kSamples;
-    return k == 0 ? w0 : k == kSamples ? w1 : (k0 + k - 1) * step;
-  };
-  // A span over which the ball's surface above the node (at least the centre's lowest height
-  // less the ball's depth below its centre at the node's least distance from the axis) cannot
-  // come below `below` holds no crossing that matters and is not probed: near the axis that is
-  // most of the window. Spans of 16 samples are ruled out first, then the steps of those that
-  // are not.
-  auto cannot_lower = [&](double ta, double tb) {
-    const double rho = std::max(0.0, closest(ta, tb));
-    return rho >= s_.R || table_.lowest_z(ta, tb) - std::sqrt(s_.R2 - rho * rho) >= below;
-  };
-  double ga = NAN;
-  for (int k = 1; k <= kSamples; ++k) {
-    if ((k - 1) % kChunk == 0 && cannot_lower(at(k - 1), at(std::min(k - 1 + kChunk, kSamples)))) {
-      k += kChunk - 1, ga = NAN;
-      continue;
-    }
-    const double ta = at(k - 1), tb = at(k);
-    if (cannot_lower(ta, tb)) {
-      ga = NAN;
-      continue;
-    }
-    if (std::isnan(ga)) ga = probe(tooth, ta).g;
-    const double gb = probe(tooth, tb).g;
-    // Where the axis passes the node within the step, the node's azimuth swings round fast
-    // enough that g can dip through zero and back between two samples: g is sampled at the
-    // closest approach too (the centre moving straight over a step).
-    const double tc = closest_time(ta, tb);
-    if (tc > ta && tc < tb) {
-      const double gc = probe(tooth, tc).g;
-      if (crosses(ga, gc)) roots.push_back(bisect(tooth, ta, tc, ga));
-      if (crosses(gc, gb)) roots.push_back(bisect(tooth, tc, tb, gc));
-    } else if (crosses(ga, gb)) {
-      roots.push_back(bisect(tooth, ta, tb, ga));
-    }
-    ga = gb;
+  const double A = table_.accel_xy(), h = b - a;
+  double rho_lo, rho_hi, v, cross;
+  const double first_knot = step > 0 ? std::max(0.0, std::floor(a / step) + 1) * step : INFINITY;
+  const bool knot_inside =
+      step > 0 && first_knot < b &&
+      first_knot <=
+          static_cast<double>(s_.path->correction_samples(pass_).values.size() - 1) * step;
+  if (!knot_inside) {
+    // One smooth piece: the (tabulated) centre lies within A h^2 / 8 of its chord (plus round-off
+    // ), its speed within A h / 2 of the larger at the ends, and the moment of its
+    // velocity about the node, q x q' (whose rate is q x q''), within rho A h / 2 of the larger.
+    const Vec3 ca = table_(a), cb = table_(b), va = table_.velocity(a), vb = table_.velocity(b);
+    const double sag = A * h * h / 8 + 1e-12;
+    const double u = nearest_on_chord(ca, cb);
+    const double ax = x_ - ca.x(), ay = y_ - ca.y(), bx = x_ - cb.x(), by = y_ - cb.y();
+    rho_lo = std::max(0.0, norm(ax - u * (cb.x() - ca.x()), ay - u * (cb.y() - ca.y())) - sag);
+    rho_hi = std::max(norm(ax, ay), norm(bx, by)) + sag;
+    v = std::max(norm(va.x(), va.y()), norm(vb.x(), vb.y())) + A * h / 2;
+    cross = std::max(std::abs(ax * va.y() - ay * va.x()), std::abs(bx * vb.y() - by * vb.x())) +
+            rho_hi * A * h / 2;
+  } else {
+    rho_lo = std::max(0.0, closest(a, b));
+    const Vec3 ca = table_.nominal(a), cb = table_.nominal(b);
+    rho_hi = std::max(norm(x_ - ca.x(), y_ - ca.y()), norm(x_ - cb.x(), y_ - cb.y())) +
+             A * h * h / 8 + s_.reach_xy + 1e-12;
+    v = s_.top_speed(pass_, a, b).first;
+    cross = rho_hi * v;
   }
-  return false;
+  const LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);
+  // In u = ln(rho) and the node's azimuth az, G' = omega + Psi_u u' - az' with |u'| <= v / rho
+  // and az' = (q x q') / rho^2; G'' = Psi_uu u'^2 + Psi_u u'' - az'' with |u''| <= A / rho +
+  // (v / rho)^2 and |az''| <= A / rho + 2 |q x q'| v / rho^3 (q the node's offset from the axis).
+  if (!(rho_lo > 0)) return {rho_lo, rho_hi, INFINITY, INFINITY};
+  const double speed = v / rho_lo, spin = cross / (rho_lo * rho_lo);
+  const double turn = k.k1 * speed + spin;
+  const double curve = !knot_inside && !k.kink
+                           ? k.k2 * speed * speed + k.k1 * (A / rho_lo + speed * speed) +
+                                 A / rho_lo + 2 * spin * speed
+                           : INFINITY;
+  return {rho_lo, rho_hi, std::isnan(turn) ? INFINITY : turn, std::isnan(curve) ? INFINITY : curve};
+}
+
+double PassageGeometry::turn_bound(double lo, double hi) const {
+  const double w = std::abs(s_.omega), h = (hi - lo) / 4;
+  double sum = 0;
+  for (int i = 0; i < 4; ++i) {
+    const double turn = span(lo + i * h, i == 3 ? hi : lo + (i + 1) * h).turn;
+    if (!(turn < w)) return INFINITY;
+    sum += (w + turn) * h;
+  }
+  return sum;
+}
+
+double PassageGeometry::rate(double t) const {
+  const Vec3 c = table_(t), v = table_.velocity(t);
+  const double qx = x_ - c.x(), qy = y_ - c.y(), r2 = qx * qx + qy * qy;
+  if (!(r2 > 0)) return NAN;
+  // q' = -v: u' = (q . q') / r2, az' = (q x q') / r2.
+  const double du = -(qx * v.x() + qy * v.y()) / r2, daz = -(qx * v.y() - qy * v.x()) / r2;
+  const double sin_a = std::sqrt(r2) / s_.R;
+  if (sin_a >= 1) return NAN;
+  return s_.omega + s_.lag_shape.slope(sin_a, std::sqrt(1 - sin_a * sin_a), *s_.tool) * du - daz;
+}
+
+// Cut [a, b] in halves until each piece is settled. On a piece of length h with ends' phases
+// g_a, g_b (wrapped to the nearest crossing):
+// - no crossing under the ball can lie below `below` there (the ball too high, or out of contact);
+// - no crossing at all: |g_a| + |g_b| > (|omega| + turn) h, the phase cannot reach zero and back;
+// - G monotone (turn < |omega|, or G' of one sign at both ends with room for the curvature) and
+//   turning less than pi: a crossing exactly where g changes sign, solved in its bracket.
+// Pieces are split at a correction knot inside first (G' jumps there), else at the middle; below
+// a 1e-10 revolution the sign change alone decides (a touch of the edge no grid can resolve).
+void PassageGeometry::crossings_in(int tooth, double a, double b, double& below,
+                                   std::vector<double>& roots) const {
+  struct End {
+    double t, g, rho, rate;  // rate NaN until needed
+  };
+  struct Piece {
+    End lo, hi;
+  };
+  const double w = std::abs(s_.omega), min_len = 1e-10 * s_.rev;
+  const double step = s_.path->correction_step(pass_);
+  const double last_knot =
+      step > 0 ? static_cast<double>(s_.path->correction_samples(pass_).values.size() - 1) * step
+               : -INFINITY;
+  auto end = [&](double t) {
+    const Probe q = probe(tooth, t);
+    return End{t, q.g, q.rho, NAN};
+  };
+  auto rate_of = [&](End& e) {
+    if (std::isnan(e.rate)) e.rate = rate(e.t);
+    return e.rate;
+  };
+  // The ball's lowest possible height over the node on a piece.
+  auto floor_of = [&](const Piece& p, const Span& sp) {
+    if (sp.rho_lo >= s_.R) return double(INFINITY);
+    return table_.lowest_z(p.lo.t, p.hi.t) - std::sqrt(s_.R2 - sp.rho_lo * sp.rho_lo);
+  };
+  std::vector<Piece> stack{{end(a), end(b)}};
+  while (!stack.empty()) {
+    Piece p = stack.back();
+    stack.pop_back();
+    const double h = p.hi.t - p.lo.t;
+    const Span sp = span(p.lo.t, p.hi.t);
+    if (sp.rho_lo > rho_hi_ || sp.rho_hi < rho_lo_ || floor_of(p, sp) >= below) continue;
+    const double reach = (w + sp.turn) * h;
+    if (std::abs(p.lo.g) + std::abs(p.hi.g) > reach) continue;
+    bool mono = sp.turn < w;
+    if (!mono && std::isfinite(sp.curve)) {
+      const double ra = rate_of(p.lo), rb = rate_of(p.hi);
+      mono = (ra > 0) == (rb > 0) && 0.5 * (std::abs(ra) + std::abs(rb) - sp.curve * h) > 0;
+    }
+    if ((mono && reach < M_PI) || h < min_len) {
+      if (crosses(p.lo.g, p.hi.g)) {
+        const double t = solve_bracket(tooth, p.lo.t, p.hi.t, p.lo.g, p.hi.g);
+        roots.push_back(t);
+        const Probe q = probe(tooth, t);
+        if (q.over) below = std::min(below, q.height);
+      }
+      continue;
+    }
+    // Split at the knot nearest the middle, if any, else at the middle.
+    double m = 0.5 * (p.lo.t + p.hi.t);
+    if (step > 0) {
+      const double k = std::round(m / step) * step;
+      if (k > p.lo.t && k < p.hi.t && k >= 0 && k <= last_knot)
+        m = k;
+      else if (const double k1 = std::floor(m / step) * step;
+               k1 > p.lo.t && k1 >= 0 && k1 <= last_knot)
+        m = k1;
+      else if (const double k2 = std::ceil(m / step) * step;
+               k2 < p.hi.t && k2 >= 0 && k2 <= last_knot)
+        m = k2;
+    }
+    const End mid = end(m);
+    // The half nearer the axis first: it holds the lowest crossings, which prune the other.
+    Piece left{p.lo, mid}, right{mid, p.hi};
+    if (p.lo.rho < p.hi.rho)
+      stack.push_back(right), stack.push_back(left);
+    else
+      stack.push_back(left), stack.push_back(right);
+  }
+}
+
+double PassageGeometry::solve_bracket(int tooth, double lo, double hi, double g_lo,
+                                      double g_hi) const {
+  int side = 0;
+  double t = lo;
+  for (int it = 0; it < 100 && hi - lo > 1e-13 * s_.rev; ++it) {
+    t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+    const double g = probe(tooth, t).g;
+    if (std::abs(g) < 1e-9) return t;
+    if ((g < 0) == (g_lo < 0)) {
+      lo = t, g_lo = g;
+      if (side == -1) g_hi *= 0.5;  // Illinois: the end kept twice is halved
+      side = -1;
+    } else {
+      hi = t, g_hi = g;
+      if (side == 1) g_lo *= 0.5;
+      side = 1;
+    }
+  }
+  return 0.5 * (lo + hi);
 }
 
 double PassageGeometry::bisect(int tooth, double lo, double hi, double g_lo) const {
@@ -204,40 +311,26 @@ double PassageGeometry::bisect(int tooth, double lo, double hi, double g_lo) con
 double PassageGeometry::walk(double t_b, std::vector<double>& roots, std::uint64_t& visited,
                              double below) const {
   const double t_end = this->t_end(), rev = s_.rev;
-  // Heights rising twice end a walk only on an ideal path, where they follow the envelope; a
-  // correction makes them jump from passage to passage, and only the floor ends the walk.
-  const bool by_rise = !s_.path->corrected();
   double best = INFINITY;
   for (int tooth = 0; tooth < s_.teeth; ++tooth) {
-    // The windows of a revolution each are laid from the crossing nearest t_b; from t_b itself
-    // where the secant went astray (near the axis it can run off anywhere).
-    double slope = s_.omega;
-    Probe first{};
-    double t_first = crossing(tooth, t_b, slope, first);
-    if (!converged(first) || std::abs(t_first - t_b) > s_.rev) t_first = t_b;
     for (int dir : {+1, -1}) {
-      RiseCount rise;
-      bool regular = true;
-      for (int m = (dir > 0 ? 0 : 1); m < 100000 && !(by_rise && regular && rise.done()); ++m) {
-        const double guess = t_first + dir * m * rev;
-        if (guess < -rev / 2 || guess > t_end + rev / 2) break;
-        // This window and all later ones lie beyond its near edge: past the bound's bottom (t_b
-        // is within a 20th of a tooth period of it), if the bound is too high there, nothing
-        // from here on can lower the node.
-        const double edge = guess - dir * rev / 2;
+      for (int m = (dir > 0 ? 0 : 1); m < 100000; ++m) {
+        // Revolution m from t_b: [t_b + (m - 1/2) rev, t_b + (m + 1/2) rev], and beyond its near
+        // edge all later ones: past the bound's bottom (t_b is within a 20th of a tooth period
+        // of it), if the bound is too high there, nothing from here on can lower the node.
+        const double lo = t_b + (dir * m - 0.5) * rev, hi = lo + rev;
+        if (hi < 0 || lo > t_end) break;
+        const double edge = dir > 0 ? lo : hi;
         if (m > 0 && dir * (edge - t_b) >= 0.05 * s_.period && bound(edge) >= std::min(best, below))
           break;
-        regular = crossings_near(tooth, guess, roots, std::min(best, below)) && regular;
-        double lowest = INFINITY;
+        double limit = std::min(best, below);
+        roots.clear();
+        crossings_in(tooth, std::max(lo, 0.0), std::min(hi, t_end), limit, roots);
         for (double t : roots) {
-          if (t < 0 || t > t_end) continue;
           const Probe q = probe(tooth, t);
           ++visited;
-          if (!std::isfinite(q.height)) continue;
-          if (q.over) best = std::min(best, q.height);
-          lowest = std::min(lowest, q.height);
+          if (q.over && std::isfinite(q.height)) best = std::min(best, q.height);
         }
-        rise.add(lowest);
       }
     }
   }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "centre_table.hpp"
+#include "lag_shape.hpp"
 #include "topomill/topography_evaluator.hpp"
 
 namespace topomill::plugins {
@@ -31,16 +32,16 @@ struct PassageSetup {
   const ToolPath* path;
   const ToolGeometry* tool;
   double R, R2, omega, speed;
-  double rev;        // one spindle revolution, s
-  double period;     // one tooth period, s
-  double near_axis;  // closer than this to the axis the node's azimuth turns fast (mm)
-  double reach;      // R plus the largest correction: farther across, a pass cannot touch
-  double reach_xy;   // the largest horizontal correction (mm)
+  double rev;       // one spindle revolution, s
+  double period;    // one tooth period, s
+  double reach;     // R plus the largest correction: farther across, a pass cannot touch
+  double reach_xy;  // the largest horizontal correction (mm)
   double margin, kappa;
   int iterations, teeth;
   bool along_y;
   std::vector<double> tooth_angle;
   double sin_tip, lag_tip;          // below the tip angle the lag is held (ToolGeometry)
+  LagShape lag_shape;               // bounds of the lag's turn, for the phase bounds
   std::vector<CentreTable> centre;  // per pass
   std::vector<double> line;         // per pass: its nominal x (feeding along Y) or y
   // Per pass, the range of the correction over the pass (zero when ideal): wherever the
@@ -196,11 +197,39 @@ class PassageGeometry {
     return ta + nearest_on_chord(table_(ta), table_(tb)) * (tb - ta);
   }
 
-  // All crossings of one tooth within half a revolution of `guess` that can lie below `below`,
-  // robustly (see .cpp). False when that took the scan (near the axis, or the secant did not
-  // converge).
-  bool crossings_near(int tooth, double guess, std::vector<double>& roots,
-                      double below = INFINITY) const;
+  // What bounds the phase's turn on a span [a, b] of the pass (see span()).
+  struct Span {
+    double rho_lo, rho_hi;  // the node's least and greatest distance from the axis
+    double turn;            // |G' - omega| <= turn (G the unwrapped phase, G' = dg/dt)
+    double curve;           // |G''| <= curve; +inf where G' may jump (a knot, the tip radius)
+  };
+  // Rigorous bounds over [a, b]: from the chord of the centre's motion (less its sagitta) when no
+  // correction knot lies inside, else from the nominal path less the correction's reach.
+  Span span(double a, double b) const;
+  // G'(t), the phase's rate (rad/s): the same for every tooth.
+  double rate(double t) const;
+  // Whether the phase is certainly monotone on [a, b] by the crude bound alone.
+  bool monotone(double a, double b) const {
+    return span(std::min(a, b), std::max(a, b)).turn < std::abs(s_.omega);
+  }
+  // An upper bound of how far the phase turns over [lo, hi] (the bounds summed over four equal
+  // parts, much tighter than over the whole where the axis passes close in one part); +inf when
+  // it is not proven monotone.
+  double turn_bound(double lo, double hi) const;
+  // Whether t is the crossing right after (or before) the crossing t_prev of the same tooth: the
+  // phase is monotone between and cannot have turned by 4 pi (2 pi apart, nothing between).
+  bool next_crossing(double t_prev, double t) const {
+    return std::abs(t - t_prev) > 0.25 * s_.rev &&
+           turn_bound(std::min(t, t_prev), std::max(t, t_prev)) < 2 * kTwoPi;
+  }
+
+  // Every crossing of `tooth` in [a, b] that can lie below `below` (the rest may be left out),
+  // exactly: [a, b] is cut in halves until on each piece the phase is proven monotone (one
+  // crossing at most, bracketed and solved) or proven not to reach a crossing, or the ball
+  // proven too high. `below` comes back lowered by the crossings found under the ball.
+  void crossings_in(int tooth, double a, double b, double& below, std::vector<double>& roots) const;
+  // The one crossing in [lo, hi], where g is monotone and changes sign (regula falsi, Illinois).
+  double solve_bracket(int tooth, double lo, double hi, double g_lo, double g_hi) const;
 
   // A true lower bound of every crossing's height at time t with a single minimum: the envelope
   // itself when ideal, its floor when corrected.
@@ -215,10 +244,9 @@ class PassageGeometry {
     return q.over && q.rho < kOnAxis ? q.height : INFINITY;
   }
 
-  // The reference walk: visits tooth passages outwards from the one nearest t_b (the bound's
-  // bottom) until heights rise twice (on an ideal path, and where the passages were regular) or
-  // the bound proves no later passage can go lower; returns the lowest height over the node
-  // (+inf if none).
+  // The reference walk: each tooth's revolutions outwards from t_b (the bound's bottom), every
+  // crossing in each found exactly (crossings_in), until the bound proves that nothing farther
+  // can go lower; returns the lowest height over the node (+inf if none).
   // `below` is the node's best height so far: nothing at or above it is looked for.
   double walk(double t_b, std::vector<double>& roots, std::uint64_t& visited,
               double below = INFINITY) const;

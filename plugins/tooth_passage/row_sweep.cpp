@@ -41,6 +41,7 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
   const int misses_to_stop = s_.path->corrected() ? 2 : 1;
   for (std::size_t i = 0; i < xs.size(); ++i) {
     const double x = xs[i], key = s_.along_y ? x : y;
+    exact_used_ = fallback_used_ = false;
     // Passes nearest first, outwards on both sides.
     std::ptrdiff_t right =
         std::lower_bound(by_line_.begin(), by_line_.end(), key,
@@ -77,6 +78,9 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
       open = missed < misses_to_stop && at >= 0 && at < n;
     }
     if (best < z[i]) z[i] = best, ++counts.updates;
+    ++(fallback_used_ ? counts.nodes_fallback
+       : exact_used_  ? counts.nodes_exact
+                      : counts.nodes_followed);
   }
 }
 
@@ -140,7 +144,7 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
   if (irregular) {
     // The reference's own walk, from the reference's own bottom (which the corrected branch
     // has already), so that the result is its.
-    ++counts.fallbacks;
+    ++counts.fallbacks, fallback_used_ = true;
     for (auto& r : st.roots) r.clear();
     h = geo.walk(ideal ? geo.bottom_near(t0()) : t_b, roots_, counts.passages, best);
   }
@@ -179,17 +183,39 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
   return t_b;
 }
 
+// Each tooth's passages are followed outwards from t_b, root to root (each solved from the last
+// node's), as long as the phase is proven monotone between them (PassageGeometry::next_crossing).
+// Where it is not (the axis passes close to the node: its azimuth turns faster than the spindle
+// and a passage may cross it three times), that revolution is solved exactly in place
+// (crossings_in) and the walk goes on from its far edge.
 double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
                       NodeCounts& counts, bool& irregular) {
-  const double rev = s_.rev, t_end = geo.t_end();
+  const double rev = s_.rev, t_end = geo.t_end(), w = std::abs(s_.omega);
   const double beyond = 0.05 * s_.period;  // how near t_b may be off the envelope's bottom
   double best = INFINITY;
   std::uint64_t visited = 0;
+  // A crossing's height, if it lies within the pass.
+  auto take = [&](int tooth, double t, const Probe* known) {
+    if (t < 0 || t > t_end) return double(INFINITY);
+    const Probe q = known ? *known : geo.probe(tooth, t);
+    ++visited;
+    if (!std::isfinite(q.height)) return double(INFINITY);
+    if (q.over) best = std::min(best, q.height);
+    return q.height;
+  };
+  // Every crossing in [lo, hi], exactly.
+  auto exact = [&](int tooth, double lo, double hi) {
+    ++counts.exact_windows, exact_used_ = true;
+    double limit = std::min(best, best_node);
+    roots_.clear();
+    geo.crossings_in(tooth, std::max(lo, 0.0), std::min(hi, t_end), limit, roots_);
+    for (double t : roots_) take(tooth, t, nullptr);
+  };
   for (int tooth = 0; tooth < s_.teeth; ++tooth) {
     std::vector<Root>& prev = st.roots[static_cast<std::size_t>(tooth)];
     fresh_.clear();
     // The crossing near `guess`, started from the previous node's root predicted nearest to it
-    // (within `reach`); NaN when it is irregular.
+    // (within `reach`); NaN when it did not converge.
     auto solve = [&](double guess, double reach, Probe& q) {
       const Root* match = nullptr;
       for (const Root& r : prev)
@@ -197,41 +223,66 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
           reach = std::abs(r.t + r.drift - guess), match = &r;
       double slope = match ? match->slope : s_.omega;
       const double t = geo.crossing(tooth, match ? match->t + match->drift : guess, slope, q);
-      if (!PassageGeometry::converged(q) || q.rho <= s_.near_axis) return double(NAN);
+      if (!PassageGeometry::converged(q)) return double(NAN);
       fresh_.push_back({t, match ? t - match->t : 0.0, slope});
       return t;
     };
+    // The first crossing: near t_b where the phase is monotone around it, else the revolution
+    // around t_b exactly.
     Probe first{};
-    const double t_first = solve(t_b, 0.75 * rev, first);
-    if (std::isnan(t_first)) return irregular = true, INFINITY;
+    double t_first = NAN;
+    if (geo.monotone(t_b - 0.8 * rev, t_b + 0.8 * rev)) {
+      t_first = solve(t_b, 0.75 * rev, first);
+      if (std::isnan(t_first)) return irregular = true, INFINITY;
+    } else {
+      exact(tooth, t_b - 0.5 * rev, t_b + 0.5 * rev);
+    }
+    const bool first_root = !std::isnan(t_first);
+    const double first_height = first_root ? take(tooth, t_first, &first) : INFINITY;
     for (int dir : {+1, -1}) {
-      double t_prev = t_first;
+      // Where the walk stands: a crossing, or the edge of a revolution solved exactly.
+      double t_prev = first_root ? t_first : t_b + dir * 0.5 * rev;
+      bool at_root = first_root;
       RiseCount rise;
-      for (int m = (dir > 0 ? 0 : 1); m < 100000 && !rise.done(); ++m) {
-        double t = t_first;
-        Probe q = first;
-        if (m > 0) {
-          const double guess = t_prev + dir * rev;
-          if (guess < -rev / 2 || guess > t_end + rev / 2) break;
-          // The next crossing is at least half a revolution on; past the bottom the envelope
-          // only rises, so if it is already too high there, no later passage can lower the node.
-          const double t_bound = t_prev + dir * 0.5 * rev;
-          if (dir * (t_bound - t_b) >= beyond && geo.envelope(t_bound) >= std::min(best, best_node))
-            break;
-          t = solve(guess, 0.25 * rev, q);
-          if (std::isnan(t) || dir * (t - t_prev) < 0.6 * rev || dir * (t - t_prev) > 1.6 * rev)
-            return irregular = true, INFINITY;
+      if (first_root) rise.add(first_height);
+      for (int m = 1; m < 100000 && !rise.done(); ++m) {
+        if (t_prev < -rev / 2 || t_prev > t_end + rev / 2) break;
+        // Every later crossing lies beyond t_bound; past the bottom the envelope only rises, so
+        // if it is already too high there, no later passage can lower the node.
+        const double t_bound = at_root ? t_prev + dir * 0.5 * rev : t_prev;
+        if (dir * (t_bound - t_b) >= beyond && geo.envelope(t_bound) >= std::min(best, best_node))
+          break;
+        // The next revolution exactly, where the next crossing cannot be proven the next.
+        auto solve_revolution = [&] {
+          exact(tooth, std::min(t_prev, t_prev + dir * rev), std::max(t_prev, t_prev + dir * rev));
+          t_prev += dir * rev, at_root = false;
+        };
+        if (!geo.monotone(t_prev, t_prev + dir * 1.1 * rev)) {
+          solve_revolution();
+          continue;
         }
-        t_prev = t;
-        double lowest = INFINITY;
-        if (t >= 0 && t <= t_end) {
-          ++visited;
-          if (std::isfinite(q.height)) {
-            if (q.over) best = std::min(best, q.height);
-            lowest = q.height;
-          }
+        double guess = t_prev + dir * rev, gap = 0;
+        if (!at_root) {
+          // From an edge: the next crossing is where the phase has turned on to its next zero.
+          const double g = geo.probe(tooth, t_prev).g;
+          gap = dir * s_.omega > 0 ? -g : g;
+          gap -= kTwoPi * std::floor(gap / kTwoPi);  // the turn still to go, in [0, 2 pi)
+          guess = t_prev + dir * gap / w;
         }
-        rise.add(lowest);
+        Probe q{};
+        const double t = solve(guess, 0.25 * rev, q);
+        // After a crossing, t must be the next; after an edge, the first beyond it (a crossing
+        // before it was found by the exact solve already: the walk goes on from there).
+        bool ok =
+            !std::isnan(t) && (at_root ? geo.next_crossing(t_prev, t) : dir * (t - t_prev) < 0);
+        if (!std::isnan(t) && !at_root && !ok)
+          ok = geo.turn_bound(std::min(t, t_prev), std::max(t, t_prev)) < gap + kTwoPi;
+        if (!ok) {
+          solve_revolution();
+          continue;
+        }
+        t_prev = t, at_root = true;
+        rise.add(take(tooth, t, &q));
       }
     }
     std::sort(fresh_.begin(), fresh_.end(), [](const Root& a, const Root& b) { return a.t < b.t; });
@@ -273,7 +324,7 @@ bool RowSweep::solve_root(const PassageGeometry& geo, int tooth, const Root* fro
   double slope = from ? from->slope : s_.omega;
   const double t =
       geo.crossing(tooth, from ? from->t + from->drift * (x - from->x) : guess, slope, q);
-  if (!PassageGeometry::converged(q) || q.rho <= s_.near_axis) return false;
+  if (!PassageGeometry::converged(q) || !geo.monotone(t - s_.rev, t + s_.rev)) return false;
   r = Root{t, from && x != from->x ? (t - from->t) / (x - from->x) : 0.0, slope};
   if (t >= 0 && t <= geo.t_end() && std::isfinite(q.height))
     r.x = x, r.height = q.height, r.fall = fall_rate(geo.pass(), t, q.rho, r.reach);
@@ -406,8 +457,7 @@ double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, doubl
         // Every later passage lies beyond half a revolution on.
         if (dir * (t_prev + dir * 0.5 * rev - st.stop[side]) >= 0) break;
         double t = 0;
-        if (!visit(tooth, guess, 0.25 * rev, t, out) || dir * (t - t_prev) < 0.6 * rev ||
-            dir * (t - t_prev) > 1.6 * rev)
+        if (!visit(tooth, guess, 0.25 * rev, t, out) || !geo.next_crossing(t_prev, t))
           return irregular = true, INFINITY;
         t_prev = t;
       }

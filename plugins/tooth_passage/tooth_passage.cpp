@@ -88,12 +88,17 @@ class ToothPassage : public TopographyEvaluator {
     work(0);
     for (auto& t : pool) t.join();
     NodeCounts total;
-    for (const auto& d : done)
-      total.passages += d.passages, total.fallbacks += d.fallbacks, total.updates += d.updates;
+    for (const auto& d : done) total += d;
     counts["nodes"] = g.size();
     counts["tooth_passages"] = total.passages;
     counts["updates"] = total.updates;
-    if (walk_ == Walk::Row) counts["fallbacks"] = total.fallbacks;
+    if (walk_ == Walk::Row) {
+      counts["fallbacks"] = total.fallbacks;
+      counts["exact_windows"] = total.exact_windows;
+      counts["nodes_followed"] = total.nodes_followed;
+      counts["nodes_exact"] = total.nodes_exact;
+      counts["nodes_fallback"] = total.nodes_fallback;
+    }
   }
 
  private:

@@ -1,0 +1,93 @@
+// How the edge's lag Psi turns with the distance rho from the tool's axis, as bounds for the phase
+// of a crossing (PassageGeometry::span). Written in u = ln(rho), the lag's part of the phase's
+// rate is Psi_u u' and its curvature Psi_uu u'^2 + Psi_u u'': with u' and u'' bounded by the
+// centre's speed over rho (and rho^2), both stay finite at the axis for every lag that does
+// (constant lead: Psi_u -> 0; loxodrome: Psi_u -> -tan(gamma), the log spiral).
+//
+// The tool is a plugin, so Psi_u and Psi_uu are sampled, not known in closed form: a table over
+// rho keeps, per bin, their largest magnitudes at the bin's ends and middle, widened by 10 %.
+// That bounds them wherever they are monotone within a bin (both built-in edges everywhere; a
+// bin is R / 4096 wide); the brute-force scan (node_walk.hpp) and the tests check the rest.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "topomill/tool_geometry.hpp"
+
+namespace topomill::plugins {
+
+class LagShape {
+ public:
+  struct Bound {
+    double k1;  // largest |dPsi / d ln rho|
+    double k2;  // largest |d^2 Psi / d (ln rho)^2|
+    bool kink;  // the range holds the tip radius, where a held lag makes the phase's rate jump
+  };
+
+  explicit LagShape(const ToolGeometry& tool)
+      : R_(tool.radius()), tip_(tool.radius() * std::sin(tool.min_polar_angle())) {
+    const double width = R_ / kBins;
+    k1_.resize(kBins), k2_.resize(kBins);
+    for (int b = 0; b < kBins; ++b) {
+      double m1 = 0, m2 = 0;
+      for (double f : {0.0, 0.5, 1.0}) {
+        const double rho = (b + f) * width;
+        m1 = std::max(m1, std::abs(slope(tool, rho)));
+        // Central difference in ln(rho), a thousandth either side.
+        const double up = slope(tool, rho * 1.001), down = slope(tool, rho / 1.001);
+        m2 = std::max(m2, std::abs(up - down) / (2 * std::log(1.001)));
+      }
+      k1_[static_cast<std::size_t>(b)] = 1.1 * m1;
+      k2_[static_cast<std::size_t>(b)] = 1.1 * m2;
+    }
+    for (std::size_t b = 0; b < k1_.size(); b += kBlock) {
+      const auto end = std::min(k1_.size(), b + kBlock);
+      block1_.push_back(*std::max_element(k1_.begin() + static_cast<long>(b),
+                                          k1_.begin() + static_cast<long>(end)));
+      block2_.push_back(*std::max_element(k2_.begin() + static_cast<long>(b),
+                                          k2_.begin() + static_cast<long>(end)));
+    }
+  }
+
+  // dPsi / d ln(rho) at rho (zero below the tip radius, where the lag is held).
+  double slope(double sin_a, double cos_a, const ToolGeometry& tool) const {
+    if (sin_a * R_ < tip_) return 0.0;
+    return sin_a / cos_a * tool.lag_slope_sc(sin_a, cos_a);
+  }
+
+  Bound over(double lo, double hi) const {
+    const double width = R_ / kBins;
+    const auto last = static_cast<double>(kBins - 1);
+    const auto b0 = static_cast<std::size_t>(std::clamp(std::floor(lo / width), 0.0, last));
+    const auto b1 = static_cast<std::size_t>(std::clamp(std::floor(hi / width), 0.0, last));
+    Bound r{0, 0, tip_ > 0 && lo <= tip_ && tip_ <= hi};
+    for (std::size_t b = b0; b <= b1;) {
+      if (b % kBlock == 0 && b + kBlock - 1 <= b1) {  // a whole block at once
+        r.k1 = std::max(r.k1, block1_[b / kBlock]), r.k2 = std::max(r.k2, block2_[b / kBlock]);
+        b += kBlock;
+      } else {
+        r.k1 = std::max(r.k1, k1_[b]), r.k2 = std::max(r.k2, k2_[b]);
+        ++b;
+      }
+    }
+    if (hi >= R_) r.k1 = r.k2 = INFINITY;  // the rim: no bound
+    return r;
+  }
+
+ private:
+  static constexpr int kBins = 4096;
+  static constexpr std::size_t kBlock = 64;
+
+  double slope(const ToolGeometry& tool, double rho) const {
+    const double s = std::min(rho / R_, 1.0), c = std::sqrt(1 - s * s);
+    if (s <= 0 || c <= 0) return s <= 0 ? 0.0 : INFINITY;
+    return slope(s, c, tool);
+  }
+
+  double R_, tip_;
+  std::vector<double> k1_, k2_, block1_, block2_;
+};
+
+}  // namespace topomill::plugins
