@@ -139,7 +139,7 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
       return st.floor = low, st.floor_x = x, can_lower = false, INFINITY;
   }
   bool irregular = false;
-  double h = ideal ? walk(geo, st, t_b, best, counts, irregular)
+  double h = ideal ? walk(geo, st, t_b, best, counts)
                    : walk_corrected(geo, st, t_b, best, counts, irregular);
   if (irregular) {
     // The reference's own walk, from the reference's own bottom (which the corrected branch
@@ -189,7 +189,7 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
 // and a passage may cross it three times), that revolution is solved exactly in place
 // (crossings_in) and the walk goes on from its far edge.
 double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
-                      NodeCounts& counts, bool& irregular) {
+                      NodeCounts& counts) {
   const double rev = s_.rev, t_end = geo.t_end(), w = std::abs(s_.omega);
   const double beyond = 0.05 * s_.period;  // how near t_b may be off the envelope's bottom
   double best = INFINITY;
@@ -227,14 +227,13 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
       fresh_.push_back({t, match ? t - match->t : 0.0, slope});
       return t;
     };
-    // The first crossing: near t_b where the phase is monotone around it, else the revolution
-    // around t_b exactly.
+    // The first crossing: near t_b where the phase is monotone around it (the secant can run
+    // off elsewhere: then, as where it is not monotone, the revolution around t_b exactly).
     Probe first{};
     double t_first = NAN;
-    if (geo.monotone(t_b - 0.8 * rev, t_b + 0.8 * rev)) {
-      t_first = solve(t_b, 0.75 * rev, first);
-      if (std::isnan(t_first)) return irregular = true, INFINITY;
-    } else {
+    if (geo.monotone(t_b - 0.8 * rev, t_b + 0.8 * rev)) t_first = solve(t_b, 0.75 * rev, first);
+    if (std::isnan(t_first) || std::abs(t_first - t_b) > 0.75 * rev) {
+      t_first = NAN;
       exact(tooth, t_b - 0.5 * rev, t_b + 0.5 * rev);
     }
     const bool first_root = !std::isnan(t_first);

@@ -49,8 +49,9 @@ class RowSweep {
   // t0() gives the pass's level time (computed when first asked).
   template <class F, class T0>
   double bottom(F f, const PassageGeometry& geo, PassState& st, double x, T0 t0);
+  // Ideal paths: exact everywhere (revolutions it cannot follow are solved in place).
   double walk(const PassageGeometry& geo, PassState& st, double t_b, double best,
-              NodeCounts& counts, bool& irregular);
+              NodeCounts& counts);
   // Corrected: the pass's lowest passage below `best` from its last walk's passages, solving
   // again only those whose bound fails (`solved` says whether any was); NaN when it needs a walk.
   double revisit(const PassageGeometry& geo, PassState& st, double best, NodeCounts& counts,
