@@ -13,13 +13,7 @@ using testing::source_dir;
 
 namespace {
 const std::string kConvex = "plugin = 'convex_arc'\nradius = 50.0";
-// Vibration (two modes) and deflection, appended to a scene.
-const std::string kDynamics =
-    "[force]\nplugin = 'armarego'\n"
-    "[vibration]\nenabled = true\nplugin = 'modal_rk4'\nmodes = [\n"
-    "  { axis = 'x', frequency = 785.0, damping = 0.02, stiffness = 17400000.0 },\n"
-    "  { axis = 'y', frequency = 1750.0, damping = 0.03, stiffness = 30300000.0 },\n]\n"
-    "[deflection]\nenabled = true\nplugin = 'cantilever'\n";
+const std::string kDynamics = testing::dynamics_tables();
 
 double mean_abs_difference(const topomill::HeightMap& a, const topomill::HeightMap& b) {
   REQUIRE(a.z.size() == b.z.size());

@@ -83,12 +83,7 @@ double brute_force_height(const topomill::ToolGeometry& tool, const topomill::To
   return best;
 }
 
-const std::string kDynamics =
-    "[force]\nplugin = 'armarego'\n"
-    "[vibration]\nenabled = true\nplugin = 'modal_rk4'\nmodes = [\n"
-    "  { axis = 'x', frequency = 785.0, damping = 0.02, stiffness = 17400000.0 },\n"
-    "  { axis = 'y', frequency = 1750.0, damping = 0.03, stiffness = 30300000.0 },\n]\n"
-    "[deflection]\nenabled = true\nplugin = 'cantilever'\n";
+const std::string kDynamics = testing::dynamics_tables();
 
 }  // namespace
 

@@ -18,6 +18,14 @@ std::string paper_scene(const std::string& workpiece, double lambda_deg, double 
   return s.str();
 }
 
+std::string dynamics_tables() {
+  return "[force]\nplugin = 'armarego'\n"
+         "[vibration]\nenabled = true\nplugin = 'modal_rk4'\nmodes = [\n"
+         "  { axis = 'x', frequency = 785.0, damping = 0.02, stiffness = 17400000.0 },\n"
+         "  { axis = 'y', frequency = 1750.0, damping = 0.03, stiffness = 30300000.0 },\n]\n"
+         "[deflection]\nenabled = true\nplugin = 'cantilever'\n";
+}
+
 topomill::RunResult run_scene(const std::string& toml, const std::vector<std::string>& overrides,
                               unsigned threads) {
   auto doc = topomill::SceneDocument::parse_string(toml, "test-scene.toml");

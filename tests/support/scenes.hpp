@@ -12,6 +12,9 @@ namespace testing {
 std::string paper_scene(const std::string& workpiece, double lambda_deg, double size_x,
                         double size_s, double spacing);
 
+// Vibration (two modes) and deflection with the armarego force: tables to append to a scene.
+std::string dynamics_tables();
+
 // Resolves `toml` with `overrides` ("table.key=value", as --set) and runs it.
 topomill::RunResult run_scene(const std::string& toml,
                               const std::vector<std::string>& overrides = {}, unsigned threads = 2);
