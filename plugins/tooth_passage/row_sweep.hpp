@@ -6,10 +6,12 @@
 // can go below the best height found. On a corrected path the floor takes the envelope's place
 // and every passage between its stops is visited, but one whose height, solved at an earlier
 // node, cannot have fallen below the best since is not solved again (walk_corrected); a pass
-// walked before is revisited in place, its failing passages solved again (revisit). Anything
-// irregular (a node near the tool's axis, a crossing that does not converge, passages closer
-// than half a revolution) is handed to the reference walk for that node and pass, so the result
-// is the reference's to round-off.
+// walked before is revisited in place, its failing passages solved again (revisit). A step
+// from one passage to the next is taken only where the phase bounds prove it the next
+// (PassageGeometry::next_crossing); on an ideal path a revolution that cannot be proven is
+// solved exactly in place (crossings_in: near the tool's axis). On a corrected path anything
+// irregular (no such proof, a crossing that does not converge) is handed to the reference
+// walk for that node and pass, so the result is the reference's to round-off.
 #pragma once
 
 #include <cstdint>

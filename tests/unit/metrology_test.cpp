@@ -1,5 +1,5 @@
 // Reading instrument files and measuring them: the reference values agreed by independent
-// implementations (../shared/refdata/README.md), the openGPS samples, round trips through every
+// implementations (tests/refdata/README.md), the openGPS samples, round trips through every
 // writer, form removal and Gaussian filters against analytic surfaces, and corrupt files.
 #include <zip.h>
 

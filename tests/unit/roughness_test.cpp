@@ -1,5 +1,5 @@
 // ISO 25178-2 parameters against closed forms and against the reference values agreed by
-// independent implementations (../shared/refdata/README.md).
+// independent implementations (tests/refdata/README.md).
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
