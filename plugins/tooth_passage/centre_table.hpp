@@ -43,16 +43,16 @@ class CentreTable {
     return c[0] + s * (c[1] + s * (c[2] + s * c[3]));
   }
 
-  // The centre's velocity (mm/s): the nominal cubic's derivative plus the correction's slope on
-  // its linear piece (at a knot, the piece that starts there).
-  Vec3 velocity(double t) const {
-    Vec3 v = nominal_velocity(t);
+  // The centre's velocity (mm/s): the nominal cubic's derivative plus the correction's slope.
+  Vec3 velocity(double t) const { return nominal_velocity(t) + correction_slope(t); }
+  // The correction's slope on its linear piece at t (at a knot, the piece that starts there).
+  Vec3 correction_slope(double t) const {
     const auto& c = *correction_;
     if (c.values.size() >= 2 && t >= 0) {
       const auto k = static_cast<std::size_t>(t / c.dt);
-      if (k + 1 < c.values.size()) v += (c.values[k + 1] - c.values[k]) / c.dt;
+      if (k + 1 < c.values.size()) return (c.values[k + 1] - c.values[k]) / c.dt;
     }
-    return v;
+    return Vec3::Zero();
   }
   Vec3 nominal_velocity(double t) const {
     const double u = (t - t0_) * inv_dt_;

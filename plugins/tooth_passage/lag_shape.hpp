@@ -29,11 +29,12 @@ class LagShape {
   explicit LagShape(const ToolGeometry& tool)
       : R_(tool.radius()), tip_(tool.radius() * std::sin(tool.min_polar_angle())) {
     const double width = R_ / kBins;
-    k1_.resize(kBins), k2_.resize(kBins);
-    for (int b = 0; b < kBins; ++b) {
+    const std::size_t size = level(kLevels);
+    k1_.resize(kBins), k2_.resize(kBins), k1_.reserve(size), k2_.reserve(size);
+    for (std::size_t b = 0; b < kBins; ++b) {
       double m1 = 0, m2 = 0;
       for (double f : {0.0, 0.5, 1.0}) {
-        const double rho = (b + f) * width;
+        const double rho = (static_cast<double>(b) + f) * width;
         m1 = std::max(m1, std::abs(slope(tool, rho)));
         // Central difference in ln(rho), a thousandth either side.
         const double up = slope(tool, rho * 1.001), down = slope(tool, rho / 1.001);
@@ -42,12 +43,13 @@ class LagShape {
       k1_[static_cast<std::size_t>(b)] = 1.1 * m1;
       k2_[static_cast<std::size_t>(b)] = 1.1 * m2;
     }
-    for (std::size_t b = 0; b < k1_.size(); b += kBlock) {
-      const auto end = std::min(k1_.size(), b + kBlock);
-      block1_.push_back(*std::max_element(k1_.begin() + static_cast<long>(b),
-                                          k1_.begin() + static_cast<long>(end)));
-      block2_.push_back(*std::max_element(k2_.begin() + static_cast<long>(b),
-                                          k2_.begin() + static_cast<long>(end)));
+    // Range maxima by a sparse table: level L holds the maximum over 2^L bins from each bin,
+    // so any range is the maximum of two overlapping entries (span() asks this for every piece).
+    for (int L = 1; L < kLevels; ++L) {
+      const std::size_t half = std::size_t{1} << (L - 1), base = level(L - 1);
+      for (std::size_t b = 0; b + 2 * half <= kBins; ++b)
+        k1_.push_back(std::max(k1_[base + b], k1_[base + b + half])),
+            k2_.push_back(std::max(k2_[base + b], k2_[base + b + half]));
     }
   }
 
@@ -63,22 +65,22 @@ class LagShape {
     const auto b0 = static_cast<std::size_t>(std::clamp(std::floor(lo / width), 0.0, last));
     const auto b1 = static_cast<std::size_t>(std::clamp(std::floor(hi / width), 0.0, last));
     Bound r{0, 0, tip_ > 0 && lo <= tip_ && tip_ <= hi};
-    for (std::size_t b = b0; b <= b1;) {
-      if (b % kBlock == 0 && b + kBlock - 1 <= b1) {  // a whole block at once
-        r.k1 = std::max(r.k1, block1_[b / kBlock]), r.k2 = std::max(r.k2, block2_[b / kBlock]);
-        b += kBlock;
-      } else {
-        r.k1 = std::max(r.k1, k1_[b]), r.k2 = std::max(r.k2, k2_[b]);
-        ++b;
-      }
-    }
+    const auto n = b1 - b0 + 1;
+    int L = 0;  // 2^L <= n < 2^(L + 1)
+    while ((std::size_t{2} << L) <= n) ++L;
+    const std::size_t a = level(L) + b0, b = level(L) + b1 + 1 - (std::size_t{1} << L);
+    r.k1 = std::max(k1_[a], k1_[b]), r.k2 = std::max(k2_[a], k2_[b]);
     if (hi >= R_) r.k1 = r.k2 = INFINITY;  // the rim: no bound
     return r;
   }
 
  private:
-  static constexpr int kBins = 4096;
-  static constexpr std::size_t kBlock = 64;
+  static constexpr std::size_t kBins = 4096;
+  static constexpr int kLevels = 13;  // 2^(kLevels - 1) = kBins
+  // Where level L of the sparse table starts (level l holds kBins + 1 - 2^l entries).
+  static constexpr std::size_t level(int L) {
+    return static_cast<std::size_t>(L) * (kBins + 1) - (std::size_t{1} << L) + 1;
+  }
 
   double slope(const ToolGeometry& tool, double rho) const {
     const double s = std::min(rho / R_, 1.0), c = std::sqrt(1 - s * s);
@@ -87,7 +89,7 @@ class LagShape {
   }
 
   double R_, tip_;
-  std::vector<double> k1_, k2_, block1_, block2_;
+  std::vector<double> k1_, k2_;  // the sparse table, level 0 (the bins) first
 };
 
 }  // namespace topomill::plugins

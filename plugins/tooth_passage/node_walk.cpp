@@ -6,7 +6,7 @@ namespace topomill::plugins {
 
 double node_height_reference(const PassageSetup& s, double x, double y, NodeCounts& counts,
                              std::vector<std::pair<double, std::size_t>>& order,
-                             std::vector<double>& roots) {
+                             std::vector<PassageGeometry::Crossing>& roots) {
   order.clear();
   for (std::size_t p = 0; p < s.line.size(); ++p) {
     const double across = std::abs((s.along_y ? x : y) - s.line[p]);

@@ -32,7 +32,7 @@ struct NodeCounts {
 // scratch, so that a node allocates nothing.
 double node_height_reference(const PassageSetup& s, double x, double y, NodeCounts& counts,
                              std::vector<std::pair<double, std::size_t>>& order,
-                             std::vector<double>& roots);
+                             std::vector<PassageGeometry::Crossing>& roots);
 
 // The same by brute force, to check the walks' stopping rules: every pass within reach, every
 // tooth, g sampled every `step` seconds over all the time the ball can be over the node, each

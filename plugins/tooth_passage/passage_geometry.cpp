@@ -114,7 +114,7 @@ std::pair<double, double> PassageSetup::contact_radii(std::size_t p, double t) c
 
 double PassageGeometry::crossing(int tooth, double t, double& slope, Probe& last) const {
   double g_prev = 0, t_prev = t;
-  last = {false, INFINITY, INFINITY, INFINITY};
+  last = {false, INFINITY, INFINITY, INFINITY, NAN};
   for (int k = 0; k < s_.iterations; ++k) {
     last = probe(tooth, t);
     const double gk = last.g;
@@ -129,10 +129,13 @@ double PassageGeometry::crossing(int tooth, double t, double& slope, Probe& last
   return t;
 }
 
-PassageGeometry::Span PassageGeometry::span(double a, double b) const {
+PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) const {
+  const double a = sa.t, b = sb.t;
   const double step = s_.path->correction_step(pass_);
   const double A = table_.accel_xy(), h = b - a;
-  double rho_lo, rho_hi, v, cross;
+  // rho's range, the centre's top speed in plan, and the range [c_lo, c_hi] of the moment of its
+  // velocity about the node, q x v (q the node's offset from the axis).
+  double rho_lo, rho_hi, v, c_lo, c_hi;
   const double first_knot = step > 0 ? std::max(0.0, std::floor(a / step) + 1) * step : INFINITY;
   const bool knot_inside =
       step > 0 && first_knot < b &&
@@ -140,52 +143,79 @@ PassageGeometry::Span PassageGeometry::span(double a, double b) const {
           static_cast<double>(s_.path->correction_samples(pass_).values.size() - 1) * step;
   if (!knot_inside) {
     // One smooth piece: the (tabulated) centre lies within A h^2 / 8 of its chord (plus round-off
-    // ), its speed within A h / 2 of the larger at the ends, and the moment of its
-    // velocity about the node, q x q' (whose rate is q x q''), within rho A h / 2 of the larger.
-    const Vec3 ca = table_(a), cb = table_(b), va = table_.velocity(a), vb = table_.velocity(b);
+    // ), its speed within A h / 2 of the larger at the ends, and q x v (whose rate is q x v', as
+    // q' = -v) within rho A h / 2 of the range at the ends.
+    // The correction's slope is one over the piece: the one starting at a (at b a knot may
+    // start the next).
+    const Vec3 &ca = sa.c, &cb = sb.c, va = sa.v + sa.dv, vb = sb.v + sa.dv;
     const double sag = A * h * h / 8 + 1e-12;
     const double u = nearest_on_chord(ca, cb);
     const double ax = x_ - ca.x(), ay = y_ - ca.y(), bx = x_ - cb.x(), by = y_ - cb.y();
     rho_lo = std::max(0.0, norm(ax - u * (cb.x() - ca.x()), ay - u * (cb.y() - ca.y())) - sag);
     rho_hi = std::max(norm(ax, ay), norm(bx, by)) + sag;
     v = std::max(norm(va.x(), va.y()), norm(vb.x(), vb.y())) + A * h / 2;
-    cross = std::max(std::abs(ax * va.y() - ay * va.x()), std::abs(bx * vb.y() - by * vb.x())) +
-            rho_hi * A * h / 2;
+    const double m_a = ax * va.y() - ay * va.x(), m_b = bx * vb.y() - by * vb.x();
+    const double slack = rho_hi * A * h / 2;
+    c_lo = std::min(m_a, m_b) - slack, c_hi = std::max(m_a, m_b) + slack;
   } else {
     rho_lo = std::max(0.0, closest(a, b));
     const Vec3 ca = table_.nominal(a), cb = table_.nominal(b);
     rho_hi = std::max(norm(x_ - ca.x(), y_ - ca.y()), norm(x_ - cb.x(), y_ - cb.y())) +
              A * h * h / 8 + s_.reach_xy + 1e-12;
     v = s_.top_speed(pass_, a, b).first;
-    cross = rho_hi * v;
+    c_hi = rho_hi * v, c_lo = -c_hi;
   }
   const LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);
   // In u = ln(rho) and the node's azimuth az, G' = omega + Psi_u u' - az' with |u'| <= v / rho
-  // and az' = (q x q') / rho^2; G'' = Psi_uu u'^2 + Psi_u u'' - az'' with |u''| <= A / rho +
-  // (v / rho)^2 and |az''| <= A / rho + 2 |q x q'| v / rho^3 (q the node's offset from the axis).
-  if (!(rho_lo > 0)) return {rho_lo, rho_hi, INFINITY, INFINITY};
-  const double speed = v / rho_lo, spin = cross / (rho_lo * rho_lo);
-  const double turn = k.k1 * speed + spin;
+  // and -az' = (q x v) / rho^2; G'' = Psi_uu u'^2 + Psi_u u'' - az'' with |u''| <= A / rho +
+  // (v / rho)^2 and |az''| <= A / rho + 2 |q x v| v / rho^3.
+  if (!(rho_lo > 0)) return {rho_lo, rho_hi, INFINITY, INFINITY, INFINITY};
+  const double speed = v / rho_lo, lag = k.k1 * speed;
+  // -az' within [m_lo, m_hi]: on the side of the pass where the node's azimuth turns with the
+  // spindle it only adds to the rate, and only the lag can slow it.
+  const double r2_lo = rho_lo * rho_lo, r2_hi = rho_hi * rho_hi;
+  const double m_lo = c_lo / (c_lo < 0 ? r2_lo : r2_hi), m_hi = c_hi / (c_hi > 0 ? r2_lo : r2_hi);
+  const bool forward = s_.omega > 0;
+  double fall = lag - (forward ? m_lo : -m_hi), rise = lag + (forward ? m_hi : -m_lo);
+  // The lag's and the azimuth's parts together, (Psi_u (q . q') - q x q') / rho^2, are also at
+  // most sqrt(1 + Psi_u^2) v / rho ((q . q', q x q') has length rho v): tighter where the axis
+  // passes closest, for an edge that lags (the loxodrome's log spiral).
+  const double both = std::sqrt(1 + k.k1 * k.k1) * speed;
+  fall = std::min(fall, both), rise = std::min(rise, both);
+  const double spin = std::max(std::abs(c_lo), std::abs(c_hi)) / r2_lo;
   const double curve = !knot_inside && !k.kink
                            ? k.k2 * speed * speed + k.k1 * (A / rho_lo + speed * speed) +
                                  A / rho_lo + 2 * spin * speed
                            : INFINITY;
-  return {rho_lo, rho_hi, std::isnan(turn) ? INFINITY : turn, std::isnan(curve) ? INFINITY : curve};
+  auto finite = [](double x) { return std::isnan(x) ? INFINITY : x; };
+  return {rho_lo, rho_hi, finite(fall), finite(rise), finite(curve)};
 }
 
-double PassageGeometry::turn_bound(double lo, double hi) const {
+bool PassageGeometry::turns_by(double lo, double hi, double turn) const {
   const double w = std::abs(s_.omega), h = (hi - lo) / 4;
-  double sum = 0;
+  Sample at[5];
+  double bound = 0;
+  at[0] = sample(lo);
   for (int i = 0; i < 4; ++i) {
-    const double turn = span(lo + i * h, i == 3 ? hi : lo + (i + 1) * h).turn;
-    if (!(turn < w)) return INFINITY;
-    sum += (w + turn) * h;
+    at[i + 1] = sample(i == 3 ? hi : lo + (i + 1) * h);
+    const Span part = span(at[i], at[i + 1]);
+    if (!part.monotone(w)) return false;
+    bound += part.top(w) * h;
   }
-  return sum;
+  if (bound < turn + kTwoPi) return true;
+  // The whole turn, exactly: it is the given one to round-off (two crossings agree to 1e-9 rad).
+  double sum = 0;
+  Probe a = probe(0, lo, at[0].c);
+  for (int i = 1; i <= 4; ++i) {
+    const Probe b = probe(0, at[i].t, at[i].c);
+    sum += advance(at[i - 1].t, a, at[i].t, b);
+    a = b;
+  }
+  return std::abs(std::abs(sum) - turn) < 1e-6;
 }
 
-double PassageGeometry::rate(double t) const {
-  const Vec3 c = table_(t), v = table_.velocity(t);
+double PassageGeometry::rate(const Sample& at, const Vec3& dv) const {
+  const Vec3 &c = at.c, v = at.v + dv;
   const double qx = x_ - c.x(), qy = y_ - c.y(), r2 = qx * qx + qy * qy;
   if (!(r2 > 0)) return NAN;
   // q' = -v: u' = (q . q') / r2, az' = (q x q') / r2.
@@ -196,83 +226,138 @@ double PassageGeometry::rate(double t) const {
 }
 
 // Cut [a, b] in halves until each piece is settled. On a piece of length h with ends' phases
-// g_a, g_b (wrapped to the nearest crossing):
+// g_a, g_b (each tooth's, wrapped to its nearest crossing):
+// - no tooth can cross there: |g_a| + |g_b| > (|omega| + turn) h for each, the phase cannot reach
+//   zero and back;
 // - no crossing under the ball can lie below `below` there (the ball too high, or out of contact);
-// - no crossing at all: |g_a| + |g_b| > (|omega| + turn) h, the phase cannot reach zero and back;
-// - G monotone (turn < |omega|, or G' of one sign at both ends with room for the curvature) and
-//   turning less than pi: a crossing exactly where g changes sign, solved in its bracket.
+// - G monotone (turn < |omega|, or G' of one sign at both ends with room for the curvature), with
+//   bounds on its rate narrow enough that G's increment over the piece is known to less than a
+//   turn: G is then known unwrapped, and every tooth's crossings are the levels it passes, each
+//   solved in its bracket (solve_level). Far from the axis a whole revolution settles at once.
 // Pieces are split at a correction knot inside first (G' jumps there), else at the middle; below
 // a 1e-10 revolution the sign change alone decides (a touch of the edge no grid can resolve).
-void PassageGeometry::crossings_in(int tooth, double a, double b, double& below,
-                                   std::vector<double>& roots) const {
+void PassageGeometry::crossings_in(int only, double a, double b, double& below,
+                                   std::vector<Crossing>& roots) const {
   struct End {
-    double t, g, rho, rate;  // rate NaN until needed
+    Sample at;
+    Probe q;      // tooth 0's
+    double rate;  // NaN until needed
   };
   struct Piece {
     End lo, hi;
   };
   const double w = std::abs(s_.omega), min_len = 1e-10 * s_.rev;
+  const int first = only < 0 ? 0 : only, last = only < 0 ? s_.teeth - 1 : only;
   const double step = s_.path->correction_step(pass_);
   const double last_knot =
       step > 0 ? static_cast<double>(s_.path->correction_samples(pass_).values.size() - 1) * step
                : -INFINITY;
+  // Tooth j's phase is tooth 0's turned by its angle: one probe serves all.
+  auto offset = [&](int j) { return s_.tooth_angle[j] - s_.tooth_angle[0]; };
   auto end = [&](double t) {
-    const Probe q = probe(tooth, t);
-    return End{t, q.g, q.rho, NAN};
+    const Sample at = sample(t);
+    return End{at, probe(0, t, at.c), NAN};
   };
-  auto rate_of = [&](End& e) {
-    if (std::isnan(e.rate)) e.rate = rate(e.t);
+  // The rate at an end on the side of a piece whose correction slope is dv (kept: an end is
+  // shared by two pieces, on the same slope except at a knot).
+  auto rate_of = [&](End& e, const Vec3& dv) {
+    if (e.at.dv != dv) return rate(e.at, dv);
+    if (std::isnan(e.rate)) e.rate = rate(e.at, dv);
     return e.rate;
   };
   // The ball's lowest possible height over the node on a piece.
   auto floor_of = [&](const Piece& p, const Span& sp) {
     if (sp.rho_lo >= s_.R) return double(INFINITY);
-    return table_.lowest_z(p.lo.t, p.hi.t) - std::sqrt(s_.R2 - sp.rho_lo * sp.rho_lo);
+    return table_.lowest_z(p.lo.at.t, p.hi.at.t) - std::sqrt(s_.R2 - sp.rho_lo * sp.rho_lo);
+  };
+  auto found = [&](int tooth, double t) {
+    roots.push_back({tooth, t});
+    const Probe q = probe(tooth, t);
+    if (q.over) below = std::min(below, q.height);
   };
   std::vector<Piece> stack{{end(a), end(b)}};
   while (!stack.empty()) {
     Piece p = stack.back();
     stack.pop_back();
-    const double h = p.hi.t - p.lo.t;
-    const Span sp = span(p.lo.t, p.hi.t);
+    const double h = p.hi.at.t - p.lo.at.t;
+    const Span sp = span(p.lo.at, p.hi.at);
+    const double reach = sp.top(w) * h;
+    bool reachable = false;
+    for (int j = first; j <= last && !reachable; ++j)
+      reachable =
+          std::abs(wrap(p.lo.q.g + offset(j))) + std::abs(wrap(p.hi.q.g + offset(j))) <= reach;
+    if (!reachable) continue;
     if (sp.rho_lo > rho_hi_ || sp.rho_hi < rho_lo_ || floor_of(p, sp) >= below) continue;
-    const double reach = (w + sp.turn) * h;
-    if (std::abs(p.lo.g) + std::abs(p.hi.g) > reach) continue;
-    bool mono = sp.turn < w;
+    // Monotone: turn < |omega|, or G' of one sign at both ends with room for the curvature (G'
+    // is then at least half their sum less the curvature's fall between).
+    bool mono = sp.monotone(w);
     if (!mono && std::isfinite(sp.curve)) {
-      const double ra = rate_of(p.lo), rb = rate_of(p.hi);
+      const double ra = rate_of(p.lo, p.lo.at.dv), rb = rate_of(p.hi, p.lo.at.dv);
       mono = (ra > 0) == (rb > 0) && 0.5 * (std::abs(ra) + std::abs(rb) - sp.curve * h) > 0;
     }
-    if ((mono && reach < M_PI) || h < min_len) {
-      if (crosses(p.lo.g, p.hi.g)) {
-        const double t = solve_bracket(tooth, p.lo.t, p.hi.t, p.lo.g, p.hi.g);
-        roots.push_back(t);
-        const Probe q = probe(tooth, t);
-        if (q.over) below = std::min(below, q.height);
+    if (mono) {
+      // Unwrapped from the piece's start (rho_lo > 0: the turn is exact), every tooth's levels
+      // G = 2 pi m - offset(j) between its ends.
+      const double g_lo = p.lo.q.g, g_hi = g_lo + advance(p.lo.at.t, p.lo.q, p.hi.at.t, p.hi.q);
+      const double v_lo = std::min(g_lo, g_hi), v_hi = std::max(g_lo, g_hi);
+      for (int j = first; j <= last; ++j)
+        for (double m = std::ceil((v_lo + offset(j)) / kTwoPi); m * kTwoPi - offset(j) <= v_hi; ++m)
+          found(j, solve_level(p.lo.at.t, p.lo.q, p.hi.at.t, g_hi, m * kTwoPi - offset(j)));
+      continue;
+    }
+    if (h < min_len) {
+      for (int j = first; j <= last; ++j) {
+        const double ga = wrap(p.lo.q.g + offset(j)), gb = wrap(p.hi.q.g + offset(j));
+        if (crosses(ga, gb)) found(j, solve_bracket(j, p.lo.at.t, p.hi.at.t, ga, gb));
       }
       continue;
     }
     // Split at the knot nearest the middle, if any, else at the middle.
-    double m = 0.5 * (p.lo.t + p.hi.t);
+    const double lo = p.lo.at.t, hi = p.hi.at.t;
+    double m = 0.5 * (lo + hi);
     if (step > 0) {
       const double k = std::round(m / step) * step;
-      if (k > p.lo.t && k < p.hi.t && k >= 0 && k <= last_knot)
+      if (k > lo && k < hi && k >= 0 && k <= last_knot)
         m = k;
-      else if (const double k1 = std::floor(m / step) * step;
-               k1 > p.lo.t && k1 >= 0 && k1 <= last_knot)
+      else if (const double k1 = std::floor(m / step) * step; k1 > lo && k1 >= 0 && k1 <= last_knot)
         m = k1;
-      else if (const double k2 = std::ceil(m / step) * step;
-               k2 < p.hi.t && k2 >= 0 && k2 <= last_knot)
+      else if (const double k2 = std::ceil(m / step) * step; k2 < hi && k2 >= 0 && k2 <= last_knot)
         m = k2;
     }
     const End mid = end(m);
     // The half nearer the axis first: it holds the lowest crossings, which prune the other.
     Piece left{p.lo, mid}, right{mid, p.hi};
-    if (p.lo.rho < p.hi.rho)
+    if (p.lo.q.rho < p.hi.q.rho)
       stack.push_back(right), stack.push_back(left);
     else
       stack.push_back(left), stack.push_back(right);
   }
+}
+
+double PassageGeometry::solve_level(double ta, const Probe& a, double b, double g_b,
+                                    double level) const {
+  // f = G - level: of the sign of f(ta) at ta, of the other at b.
+  double lo = ta, hi = b, f_lo = a.g - level, f_hi = g_b - level;
+  if (f_lo == 0) return lo;
+  if (f_hi == 0) return hi;
+  int side = 0;
+  double t = lo;
+  for (int it = 0; it < 100 && hi - lo > 1e-13 * s_.rev; ++it) {
+    t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+    const double f = a.g + advance(ta, a, t, probe(0, t)) - level;
+    if (std::abs(f) < 1e-9) return t;
+    if ((f < 0) == (f_lo < 0)) {
+      lo = t, f_lo = f;
+      if (side == -1) f_hi *= 0.5;  // Illinois: the end kept twice is halved
+      side = -1;
+    } else {
+      hi = t, f_hi = f;
+      if (side == 1) f_lo *= 0.5;
+      side = 1;
+    }
+  }
+  return 0.5 * (lo + hi);
 }
 
 double PassageGeometry::solve_bracket(int tooth, double lo, double hi, double g_lo,
@@ -308,7 +393,7 @@ double PassageGeometry::bisect(int tooth, double lo, double hi, double g_lo) con
   return 0.5 * (lo + hi);
 }
 
-double PassageGeometry::walk(double t_b, std::vector<double>& roots, std::uint64_t& visited,
+double PassageGeometry::walk(double t_b, std::vector<Crossing>& roots, std::uint64_t& visited,
                              double below) const {
   const double t_end = this->t_end(), rev = s_.rev;
   double best = INFINITY;
@@ -326,8 +411,8 @@ double PassageGeometry::walk(double t_b, std::vector<double>& roots, std::uint64
         double limit = std::min(best, below);
         roots.clear();
         crossings_in(tooth, std::max(lo, 0.0), std::min(hi, t_end), limit, roots);
-        for (double t : roots) {
-          const Probe q = probe(tooth, t);
+        for (const Crossing& r : roots) {
+          const Probe q = probe(tooth, r.t);
           ++visited;
           if (q.over && std::isfinite(q.height)) best = std::min(best, q.height);
         }

@@ -87,6 +87,7 @@ struct Probe {
   double g;       // edge azimuth minus node azimuth, wrapped
   double height;  // ball height above the node (+inf when not under the ball)
   double rho;     // distance from the axis
+  double lag;     // the edge's lag at rho (NaN when not under the ball)
 };
 
 class PassageGeometry {
@@ -107,16 +108,37 @@ class PassageGeometry {
   double y() const { return y_; }
   double t_end() const { return s_.path->pass(pass_).t_end; }
 
-  Probe probe(int tooth, double t) const {
-    const Vec3 c = table_(t);
+  // Where the axis is at t and how fast it moves: what probe, span and rate read of the path,
+  // taken once for each time (a subdivision's ends are shared by two pieces).
+  struct Sample {
+    double t;
+    Vec3 c;      // the centre
+    Vec3 v, dv;  // its velocity, nominal and the correction's (on the piece starting at t)
+  };
+  Sample sample(double t) const {
+    return {t, table_(t), table_.nominal_velocity(t), table_.correction_slope(t)};
+  }
+
+  Probe probe(int tooth, double t) const { return probe(tooth, t, table_(t)); }
+  Probe probe(int tooth, double t, const Vec3& c) const {
     const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
-    if (r2 >= s_.R2) return {false, 0, INFINITY, std::sqrt(r2)};
+    if (r2 >= s_.R2) return {false, 0, INFINITY, std::sqrt(r2), NAN};
     const double rho = std::sqrt(r2), below = std::sqrt(s_.R2 - r2);
     const double sin_a = rho / s_.R;
     const double lag = sin_a < s_.sin_tip ? s_.lag_tip : s_.tool->lag_sc(sin_a, below / s_.R);
     return {rho >= rho_lo_ && rho <= rho_hi_,
             wrap(s_.tooth_angle[tooth] + lag + phase_ + s_.omega * t - std::atan2(dy, dx)),
-            c.z() - below, rho};
+            c.z() - below, rho, lag};
+  }
+
+  // How far the phase G (unwrapped) turns from probe a at ta to probe b at tb, exactly, where
+  // the axis cannot come round the node between: wherever the centre stays in a convex region
+  // that leaves the node out (span's rho_lo > 0: the chord thickened by its sagitta), the node's
+  // azimuth turns by less than pi, so of G's increment omega (tb - ta) + lag_b - lag_a - turn of
+  // the azimuth all but the last is known and the wrapped phases fix the rest. NaN off the ball.
+  double advance(double ta, const Probe& a, double tb, const Probe& b) const {
+    const double known = s_.omega * (tb - ta) + b.lag - a.lag;
+    return known + wrap(b.g - a.g - known);
   }
 
   // A lower bound of envelope(t) whatever the correction within the pass's range: the nominal
@@ -200,34 +222,47 @@ class PassageGeometry {
   // What bounds the phase's turn on a span [a, b] of the pass (see span()).
   struct Span {
     double rho_lo, rho_hi;  // the node's least and greatest distance from the axis
-    double turn;            // |G' - omega| <= turn (G the unwrapped phase, G' = dg/dt)
-    double curve;           // |G''| <= curve; +inf where G' may jump (a knot, the tip radius)
+    // G the unwrapped phase, G' = dG/dt: in the spindle's sense, within [w - fall, w + rise]
+    // (w = |omega|).
+    double fall, rise;
+    double curve;  // |G''| <= curve; +inf where G' may jump (a knot, the tip radius)
+    bool monotone(double w) const { return fall < w; }
+    double top(double w) const { return std::max(w + rise, fall - w); }  // |G'| <= top
   };
   // Rigorous bounds over [a, b]: from the chord of the centre's motion (less its sagitta) when no
   // correction knot lies inside, else from the nominal path less the correction's reach.
-  Span span(double a, double b) const;
-  // G'(t), the phase's rate (rad/s): the same for every tooth.
-  double rate(double t) const;
+  Span span(double a, double b) const { return span(sample(a), sample(b)); }
+  Span span(const Sample& a, const Sample& b) const;
+  // G'(t), the phase's rate (rad/s): the same for every tooth. `dv` is the correction's slope on
+  // the side of t asked for (sample's is the right: a piece ending at a knot asks for the left).
+  double rate(const Sample& at, const Vec3& dv) const;
   // Whether the phase is certainly monotone on [a, b] by the crude bound alone.
   bool monotone(double a, double b) const {
-    return span(std::min(a, b), std::max(a, b)).turn < std::abs(s_.omega);
+    return span(std::min(a, b), std::max(a, b)).monotone(std::abs(s_.omega));
   }
-  // An upper bound of how far the phase turns over [lo, hi] (the bounds summed over four equal
-  // parts, much tighter than over the whole where the axis passes close in one part); +inf when
-  // it is not proven monotone.
-  double turn_bound(double lo, double hi) const;
+  // Whether the phase is monotone on [lo, hi] and turns by exactly `turn` there, given that it
+  // turns by `turn` plus a whole number of turns (the phases at both ends tell): proven on four
+  // equal parts, by the bounds (less than one more turn) or, where they are too loose, exactly
+  // (advance).
+  bool turns_by(double lo, double hi, double turn) const;
   // Whether t is the crossing right after (or before) the crossing t_prev of the same tooth: the
-  // phase is monotone between and cannot have turned by 4 pi (2 pi apart, nothing between).
+  // phase is monotone between and turns by exactly one turn (nothing between).
   bool next_crossing(double t_prev, double t) const {
     return std::abs(t - t_prev) > 0.25 * s_.rev &&
-           turn_bound(std::min(t, t_prev), std::max(t, t_prev)) < 2 * kTwoPi;
+           turns_by(std::min(t, t_prev), std::max(t, t_prev), kTwoPi);
   }
 
-  // Every crossing of `tooth` in [a, b] that can lie below `below` (the rest may be left out),
-  // exactly: [a, b] is cut in halves until on each piece the phase is proven monotone (one
-  // crossing at most, bracketed and solved) or proven not to reach a crossing, or the ball
-  // proven too high. `below` comes back lowered by the crossings found under the ball.
-  void crossings_in(int tooth, double a, double b, double& below, std::vector<double>& roots) const;
+  // Every crossing of `tooth` (of every tooth when -1) in [a, b] that can lie below `below` (the
+  // rest may be left out), exactly: [a, b] is cut in halves until on each piece the phase is
+  // proven monotone and known unwrapped (its crossings solved in their brackets), or proven not
+  // to reach a crossing, or the ball proven too high. `below` comes back lowered by the crossings
+  // found under the ball.
+  struct Crossing {
+    int tooth;
+    double t;
+  };
+  void crossings_in(int tooth, double a, double b, double& below,
+                    std::vector<Crossing>& roots) const;
   // The one crossing in [lo, hi], where g is monotone and changes sign (regula falsi, Illinois).
   double solve_bracket(int tooth, double lo, double hi, double g_lo, double g_hi) const;
 
@@ -248,10 +283,14 @@ class PassageGeometry {
   // crossing in each found exactly (crossings_in), until the bound proves that nothing farther
   // can go lower; returns the lowest height over the node (+inf if none).
   // `below` is the node's best height so far: nothing at or above it is looked for.
-  double walk(double t_b, std::vector<double>& roots, std::uint64_t& visited,
+  double walk(double t_b, std::vector<Crossing>& roots, std::uint64_t& visited,
               double below = INFINITY) const;
 
  private:
+  // Where tooth 0's phase G, unwrapped from its value at probe `a` (time ta), equals `level` in
+  // [ta, b], G(b) = g_b; G monotone there and the node out of the axis's way (advance).
+  double solve_level(double ta, const Probe& a, double b, double g_b, double level) const;
+
   // Where on the chord from a to b (0 to 1, in plan) the node's foot lies.
   double nearest_on_chord(const Vec3& a, const Vec3& b) const {
     const double ux = b.x() - a.x(), uy = b.y() - a.y(), len2 = ux * ux + uy * uy;

@@ -187,7 +187,10 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
 // node's), as long as the phase is proven monotone between them (PassageGeometry::next_crossing).
 // Where it is not (the axis passes close to the node: its azimuth turns faster than the spindle
 // and a passage may cross it three times), that revolution is solved exactly in place
-// (crossings_in) and the walk goes on from its far edge.
+// (crossings_in) and the walk goes on from its far edge. The revolutions around t_b that cannot
+// be followed (the axis's closest approach) are solved first, for all teeth at once (the teeth's
+// phases differ by a constant: one subdivision serves them all), and the teeth are followed
+// from that zone's edges.
 double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
                       NodeCounts& counts) {
   const double rev = s_.rev, t_end = geo.t_end(), w = std::abs(s_.omega);
@@ -209,8 +212,26 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
     double limit = std::min(best, best_node);
     roots_.clear();
     geo.crossings_in(tooth, std::max(lo, 0.0), std::min(hi, t_end), limit, roots_);
-    for (double t : roots_) take(tooth, t, nullptr);
+    for (const auto& r : roots_) take(r.tooth, r.t, nullptr);
   };
+  // The zone around t_b solved for all teeth: [zone[0], zone[1]], empty when the phase is proven
+  // monotone around t_b (then each tooth's first crossing is followed from the last node's).
+  double zone[2] = {t_b, t_b};
+  if (!geo.monotone(t_b - 0.8 * rev, t_b + 0.8 * rev)) {
+    zone[0] = t_b - 0.5 * rev, zone[1] = t_b + 0.5 * rev;
+    exact(-1, zone[0], zone[1]);
+    for (int side = 0; side < 2; ++side) {
+      const double dir = side ? 1.0 : -1.0;
+      double& edge = zone[side];
+      while (edge > -rev / 2 && edge < t_end + rev / 2 &&
+             geo.envelope(edge) < std::min(best, best_node) &&
+             !geo.monotone(edge, edge + dir * 1.1 * rev)) {
+        exact(-1, std::min(edge, edge + dir * rev), std::max(edge, edge + dir * rev));
+        edge += dir * rev;
+      }
+    }
+  }
+  const bool zoned = zone[1] > zone[0];
   for (int tooth = 0; tooth < s_.teeth; ++tooth) {
     std::vector<Root>& prev = st.roots[static_cast<std::size_t>(tooth)];
     fresh_.clear();
@@ -231,16 +252,18 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
     // off elsewhere: then, as where it is not monotone, the revolution around t_b exactly).
     Probe first{};
     double t_first = NAN;
-    if (geo.monotone(t_b - 0.8 * rev, t_b + 0.8 * rev)) t_first = solve(t_b, 0.75 * rev, first);
-    if (std::isnan(t_first) || std::abs(t_first - t_b) > 0.75 * rev) {
-      t_first = NAN;
-      exact(tooth, t_b - 0.5 * rev, t_b + 0.5 * rev);
+    if (!zoned) {
+      t_first = solve(t_b, 0.75 * rev, first);
+      if (std::isnan(t_first) || std::abs(t_first - t_b) > 0.75 * rev) {
+        t_first = NAN;
+        exact(tooth, t_b - 0.5 * rev, t_b + 0.5 * rev);
+      }
     }
     const bool first_root = !std::isnan(t_first);
     const double first_height = first_root ? take(tooth, t_first, &first) : INFINITY;
     for (int dir : {+1, -1}) {
       // Where the walk stands: a crossing, or the edge of a revolution solved exactly.
-      double t_prev = first_root ? t_first : t_b + dir * 0.5 * rev;
+      double t_prev = first_root ? t_first : zoned ? zone[dir > 0] : t_b + dir * 0.5 * rev;
       bool at_root = first_root;
       RiseCount rise;
       if (first_root) rise.add(first_height);
@@ -275,7 +298,7 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
         bool ok =
             !std::isnan(t) && (at_root ? geo.next_crossing(t_prev, t) : dir * (t - t_prev) < 0);
         if (!std::isnan(t) && !at_root && !ok)
-          ok = geo.turn_bound(std::min(t, t_prev), std::max(t, t_prev)) < gap + kTwoPi;
+          ok = geo.turns_by(std::min(t, t_prev), std::max(t, t_prev), gap);
         if (!ok) {
           solve_revolution();
           continue;

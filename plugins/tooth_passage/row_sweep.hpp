@@ -89,7 +89,7 @@ class RowSweep {
   std::size_t win_pass_ = kNone;
   int win_tooth_ = -1, walk_tooth_ = -1;  // walk_*: the last corrected walk's lowest passage
   double win_t_ = 0, walk_t_ = 0;
-  std::vector<double> roots_;
+  std::vector<PassageGeometry::Crossing> roots_;
   bool exact_used_ = false, fallback_used_ = false;  // the route of the node in hand
 };
 

@@ -64,7 +64,7 @@ class ToothPassage : public TopographyEvaluator {
                         // make the threads take turns
       RowSweep sweep(setup);
       std::vector<std::pair<double, std::size_t>> order;
-      std::vector<double> roots;
+      std::vector<PassageGeometry::Crossing> roots;
       // Rows are handed out one at a time, so that a thread slowed by anything else on the
       // machine takes fewer; each row is computed alone, so the bits do not depend on who.
       for (std::size_t j = next_row++; j < g.ny && !rq.stopped(); j = next_row++) {
