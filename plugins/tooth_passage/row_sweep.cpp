@@ -279,7 +279,9 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
           exact(tooth, std::min(t_prev, t_prev + dir * rev), std::max(t_prev, t_prev + dir * rev));
           t_prev += dir * rev, at_root = false;
         };
-        if (!geo.monotone(t_prev, t_prev + dir * 1.1 * rev)) {
+        const double far = t_prev + dir * 1.1 * rev;
+        const auto ahead = geo.span(std::min(t_prev, far), std::max(t_prev, far));
+        if (!ahead.monotone(w)) {
           solve_revolution();
           continue;
         }
@@ -295,10 +297,17 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
         const double t = solve(guess, 0.25 * rev, q);
         // After a crossing, t must be the next; after an edge, the first beyond it (a crossing
         // before it was found by the exact solve already: the walk goes on from there).
-        bool ok =
-            !std::isnan(t) && (at_root ? geo.next_crossing(t_prev, t) : dir * (t - t_prev) < 0);
-        if (!std::isnan(t) && !at_root && !ok)
-          ok = geo.turns_by(std::min(t, t_prev), std::max(t, t_prev), gap);
+        // Within the span just proven monotone its own bound often settles that; else the
+        // finer proof (turns_by).
+        // The phase turns by `need` plus whole turns from t_prev to t (both ends say so): t is
+        // the next crossing when it cannot have turned one more.
+        const double moved = dir * (t - t_prev), need = at_root ? kTwoPi : gap;
+        bool ok = false;
+        if (!std::isnan(t) && !at_root && moved < 0)
+          ok = true;  // behind the edge: the exact solve has it already
+        else if (!std::isnan(t) && moved > (at_root ? 0.25 * rev : 0))
+          ok = (moved <= 1.1 * rev && ahead.top(w) * moved < need + kTwoPi) ||
+               geo.turns_by(std::min(t, t_prev), std::max(t, t_prev), need);
         if (!ok) {
           solve_revolution();
           continue;
