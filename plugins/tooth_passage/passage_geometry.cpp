@@ -334,52 +334,44 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   }
 }
 
-double PassageGeometry::solve_level(double ta, const Probe& a, double b, double g_b,
-                                    double level) const {
-  // f = G - level: of the sign of f(ta) at ta, of the other at b.
-  double lo = ta, hi = b, f_lo = a.g - level, f_hi = g_b - level;
+namespace {
+// The zero of f in [lo, hi], where f(lo) = f_lo and f(hi) = f_hi differ in sign and f is
+// monotone: regula falsi with the Illinois rule (the end kept twice has its value halved), to
+// |f| < 1e-9 or a bracket narrower than `width`.
+template <class F>
+double illinois(F f, double lo, double hi, double f_lo, double f_hi, double width) {
   if (f_lo == 0) return lo;
   if (f_hi == 0) return hi;
   int side = 0;
-  double t = lo;
-  for (int it = 0; it < 100 && hi - lo > 1e-13 * s_.rev; ++it) {
-    t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+  for (int it = 0; it < 100 && hi - lo > width; ++it) {
+    double t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
     if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
-    const double f = a.g + advance(ta, a, t, probe(0, t)) - level;
-    if (std::abs(f) < 1e-9) return t;
-    if ((f < 0) == (f_lo < 0)) {
-      lo = t, f_lo = f;
-      if (side == -1) f_hi *= 0.5;  // Illinois: the end kept twice is halved
+    const double ft = f(t);
+    if (std::abs(ft) < 1e-9) return t;
+    if ((ft < 0) == (f_lo < 0)) {
+      lo = t, f_lo = ft;
+      if (side == -1) f_hi *= 0.5;
       side = -1;
     } else {
-      hi = t, f_hi = f;
+      hi = t, f_hi = ft;
       if (side == 1) f_lo *= 0.5;
       side = 1;
     }
   }
   return 0.5 * (lo + hi);
 }
+}  // namespace
+
+double PassageGeometry::solve_level(double ta, const Probe& a, double b, double g_b,
+                                    double level) const {
+  // f = G - level, G unwrapped from ta (advance).
+  return illinois([&](double t) { return a.g + advance(ta, a, t, probe(0, t)) - level; }, ta, b,
+                  a.g - level, g_b - level, 1e-13 * s_.rev);
+}
 
 double PassageGeometry::solve_bracket(int tooth, double lo, double hi, double g_lo,
                                       double g_hi) const {
-  int side = 0;
-  double t = lo;
-  for (int it = 0; it < 100 && hi - lo > 1e-13 * s_.rev; ++it) {
-    t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
-    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
-    const double g = probe(tooth, t).g;
-    if (std::abs(g) < 1e-9) return t;
-    if ((g < 0) == (g_lo < 0)) {
-      lo = t, g_lo = g;
-      if (side == -1) g_hi *= 0.5;  // Illinois: the end kept twice is halved
-      side = -1;
-    } else {
-      hi = t, g_hi = g;
-      if (side == 1) g_lo *= 0.5;
-      side = 1;
-    }
-  }
-  return 0.5 * (lo + hi);
+  return illinois([&](double t) { return probe(tooth, t).g; }, lo, hi, g_lo, g_hi, 1e-13 * s_.rev);
 }
 
 double PassageGeometry::bisect(int tooth, double lo, double hi, double g_lo) const {

@@ -4,7 +4,13 @@
 // edge taken from ToolGeometry::edge_point (MODEL.md Eq. 1-7, not the evaluator's own formula),
 // every sign change of the edge-minus-node azimuth bisected. No bound, no stopping rule.
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <random>
+#include <sstream>
 
 #include "support/scenes.hpp"
 
@@ -85,6 +91,49 @@ double brute_force_height(const topomill::ToolGeometry& tool, const topomill::To
 
 const std::string kDynamics = testing::dynamics_tables();
 
+// Both walks of tooth_passage against the brute force at every node of a scene's grid.
+struct Compared {
+  double worst[2] = {0, 0};  // row, node walk (mm)
+  std::size_t nodes = 0;
+  // Of the row walk's nodes, the shares (%) that were followed, solved in an exact window, handed
+  // to the reference walk (the route counters of summary.json).
+  double routes[3] = {0, 0, 0};
+  double brute_s = 0;  // the brute force's time
+};
+Compared compare_walks(const std::string& scene, const std::vector<std::string>& overrides) {
+  auto doc = topomill::SceneDocument::parse_string(scene, "near-axis.toml");
+  for (const auto& o : overrides) doc.apply_override(o);
+  topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
+  const topomill::Prepared tool_only = topomill::prepare(doc.resolve(catalog), catalog);
+  std::vector<double> expected;
+  Compared out;
+  for (int w = 0; w < 2; ++w) {
+    auto o = overrides;
+    o.push_back("evaluator.plugin=tooth_passage");
+    o.push_back(std::string("evaluator.walk=") + (w == 0 ? "row" : "node"));
+    const auto run = testing::run_scene(scene, o, 2);
+    const auto& g = run.raw.grid;
+    if (expected.empty()) {
+      const auto start = std::chrono::steady_clock::now();
+      for (std::size_t j = 0; j < g.ny; ++j)
+        for (std::size_t i = 0; i < g.nx; ++i)
+          expected.push_back(brute_force_height(*tool_only.tool, *run.layout.path, g.x(i), g.y(j)));
+      out.brute_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      out.nodes = g.nx * g.ny;
+      int k = 0;
+      for (const char* route : {"nodes_followed", "nodes_exact", "nodes_fallback"})
+        out.routes[k++] = 100.0 * static_cast<double>(run.work.at(route)) / out.nodes;
+    }
+    for (std::size_t j = 0; j < g.ny; ++j)
+      for (std::size_t i = 0; i < g.nx; ++i)
+        out.worst[w] = std::max(out.worst[w], std::abs(run.raw.at(i, j) - expected[j * g.nx + i]));
+  }
+  return out;
+}
+
+const std::string kFlat = "plugin = 'inclined_plane'";
+const std::string kConvex = "plugin = 'convex_arc'\nradius = 50.0";
+
 }  // namespace
 
 TEST_CASE("tooth_passage equals a brute force where the axis passes over the nodes",
@@ -96,8 +145,7 @@ TEST_CASE("tooth_passage equals a brute force where the axis passes over the nod
     std::vector<std::string> overrides;
     std::string extra;
   };
-  const std::string flat = "plugin = 'inclined_plane'",
-                    convex = "plugin = 'convex_arc'\nradius = 50.0";
+  const std::string &flat = kFlat, &convex = kConvex;
   const std::vector<std::string> vertical_flat = {"tool.plugin=ball_end_constant_lead",
                                                   "tool.helix_angle=0", "cutting.depth_of_cut=0.02",
                                                   "cutting.spindle_direction=ccw"};
@@ -133,29 +181,69 @@ TEST_CASE("tooth_passage equals a brute force where the axis passes over the nod
   INFO(c.name);
   const std::string scene =
       testing::paper_scene(c.workpiece, c.lambda, c.size_x, c.size_s, c.spacing) + c.extra;
-  auto doc = topomill::SceneDocument::parse_string(scene, "near-axis.toml");
-  for (const auto& o : c.overrides) doc.apply_override(o);
-  topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
-  const topomill::Prepared tool_only = topomill::prepare(doc.resolve(catalog), catalog);
-  std::vector<double> expected;
-  for (const char* walk : {"row", "node"}) {
-    auto o = c.overrides;
-    o.push_back("evaluator.plugin=tooth_passage");
-    o.push_back(std::string("evaluator.walk=") + walk);
-    const auto run = testing::run_scene(scene, o, 2);
-    const auto& g = run.raw.grid;
-    if (expected.empty())
-      for (std::size_t j = 0; j < g.ny; ++j)
-        for (std::size_t i = 0; i < g.nx; ++i)
-          expected.push_back(brute_force_height(*tool_only.tool, *run.layout.path, g.x(i), g.y(j)));
-    double worst = 0;
-    std::size_t wi = 0, wj = 0;
-    for (std::size_t j = 0; j < g.ny; ++j)
-      for (std::size_t i = 0; i < g.nx; ++i)
-        if (const double d = std::abs(run.raw.at(i, j) - expected[j * g.nx + i]); d > worst)
-          worst = d, wi = i, wj = j;
-    INFO(walk << " walk: largest difference " << worst * 1e6 << " nm at node (" << wi << ", " << wj
-              << ") of " << g.nx << " x " << g.ny);
-    CHECK(worst <= 1e-6);
+  const Compared r = compare_walks(scene, c.overrides);
+  INFO("largest difference: row walk " << r.worst[0] * 1e6 << " nm, node walk " << r.worst[1] * 1e6
+                                       << " nm over " << r.nodes << " nodes");
+  CHECK(r.worst[0] <= 1e-6);
+  CHECK(r.worst[1] <= 1e-6);
+}
+
+// The whole matrix the fast evaluator promises to be exact on near the axis (scripts/near-axis-
+// sweep runs it and records the table in docs/performance.md; not in CI: about ten minutes).
+// Each case draws one value of every factor (a fixed seed: the same cases every run), so that
+// every value of every factor appears; a patch of 25 x 9 nodes across a pass line.
+TEST_CASE("tooth_passage equals a brute force over the near-axis matrix", "[.near-axis-sweep]") {
+  const int cases =
+      std::getenv("TOPOMILL_SWEEP_CASES") ? std::atoi(std::getenv("TOPOMILL_SWEEP_CASES")) : 40;
+  const char* table = std::getenv("TOPOMILL_SWEEP_OUT");
+  std::ostringstream rows;
+  rows
+      << "| # | surface | lambda (deg) | ap (mm) | tool | teeth | spindle | spacing (um) | effects "
+         "| nodes | routes: followed / exact / reference (%) | row walk worst (nm) | node walk "
+         "worst (nm) | brute force (s) |\n"
+      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::mt19937 rng(20261123);
+  auto pick = [&](auto const& values) { return values[rng() % values.size()]; };
+  const std::vector<double> lambdas = {0.0, 0.5, 1.0, 3.0}, aps = {0.005, 0.02, 0.1, 0.3},
+                            spacings = {0.0005, 0.001, 0.0025, 0.005};
+  const std::vector<int> teeth = {1, 2, 3, 4};
+  const std::vector<std::string> tools = {"constant lead, helix 0", "constant lead, helix 30",
+                                          "loxodrome, helix 30", "loxodrome, helix 0"};
+  double worst = 0;
+  for (int k = 0; k < cases; ++k) {
+    const bool convex = rng() % 2, cw = rng() % 2, dynamics = rng() % 2;
+    const double lambda = pick(lambdas), ap = pick(aps), h = pick(spacings);
+    const int z = pick(teeth);
+    const std::string tool = pick(tools);
+    std::ostringstream wp;
+    wp << (convex ? kConvex : kFlat + "\nangle = " + std::to_string(lambda));
+    std::vector<std::string> o = {
+        std::string("tool.plugin=") +
+            (tool.rfind("loxodrome", 0) == 0 ? "ball_end_loxodrome" : "ball_end_constant_lead"),
+        std::string("tool.helix_angle=") + (tool.find("30") != std::string::npos ? "30" : "0"),
+        "tool.teeth=" + std::to_string(z), "cutting.depth_of_cut=" + std::to_string(ap),
+        std::string("cutting.spindle_direction=") + (cw ? "cw" : "ccw")};
+    const std::string scene = testing::paper_scene(wp.str(), lambda, 24 * h, 8 * h, h) +
+                              (dynamics ? kDynamics : std::string());
+    // TOPOMILL_SWEEP_ONLY="3,12": those cases alone (numbered as in the table).
+    if (const char* only = std::getenv("TOPOMILL_SWEEP_ONLY");
+        only && ("," + std::string(only) + ",").find("," + std::to_string(k + 1) + ",") ==
+                    std::string::npos)
+      continue;
+    INFO("case " << k + 1 << ": " << scene);
+    const Compared r = compare_walks(scene, o);
+    CHECK(r.worst[0] <= 1e-6);
+    CHECK(r.worst[1] <= 1e-6);
+    worst = std::max({worst, r.worst[0], r.worst[1]});
+    rows << "| " << k + 1 << " | " << (convex ? "convex r 50" : "flat") << " | " << lambda << " | "
+         << ap << " | " << tool << " | " << z << " | " << (cw ? "cw" : "ccw") << " | " << h * 1e3
+         << " | " << (dynamics ? "vibration + deflection" : "ideal") << " | " << r.nodes << " | "
+         << std::round(r.routes[0]) << " / " << std::round(r.routes[1]) << " / "
+         << std::round(r.routes[2]) << " | " << std::setprecision(3) << r.worst[0] * 1e6 << " | "
+         << r.worst[1] * 1e6 << " | " << std::setprecision(2) << std::fixed << r.brute_s << " |\n"
+         << std::defaultfloat << std::setprecision(6);
   }
+  rows << "\nLargest difference over all " << cases << " cases and both walks: " << worst * 1e6
+       << " nm (the tolerance is 1 nm).\n";
+  if (table) std::ofstream(table) << rows.str();
 }
