@@ -296,11 +296,10 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
         Probe q{};
         const double t = solve(guess, 0.25 * rev, q);
         // After a crossing, t must be the next; after an edge, the first beyond it (a crossing
-        // before it was found by the exact solve already: the walk goes on from there).
-        // Within the span just proven monotone its own bound often settles that; else the
-        // finer proof (turns_by).
-        // The phase turns by `need` plus whole turns from t_prev to t (both ends say so): t is
-        // the next crossing when it cannot have turned one more.
+        // before it was found by the exact solve already: the walk goes on from there). The
+        // phase turns by `need` plus whole turns from t_prev to t (both ends say so): t is the
+        // next when it cannot have turned one more, which the span just proven monotone often
+        // shows by its own bound; else the finer proof (turns_by).
         const double moved = dir * (t - t_prev), need = at_root ? kTwoPi : gap;
         bool ok = false;
         if (!std::isnan(t) && !at_root && moved < 0)
