@@ -43,8 +43,6 @@ class CentreTable {
     return c[0] + s * (c[1] + s * (c[2] + s * c[3]));
   }
 
-  // The centre's velocity (mm/s): the nominal cubic's derivative plus the correction's slope.
-  Vec3 velocity(double t) const { return nominal_velocity(t) + correction_slope(t); }
   // The correction's slope on its linear piece at t (at a knot, the piece that starts there).
   Vec3 correction_slope(double t) const {
     const auto& c = *correction_;
@@ -54,6 +52,7 @@ class CentreTable {
     }
     return Vec3::Zero();
   }
+  // The nominal centre's velocity (mm/s): the cubic's derivative.
   Vec3 nominal_velocity(double t) const {
     const double u = (t - t0_) * inv_dt_;
     const double k = std::floor(u);

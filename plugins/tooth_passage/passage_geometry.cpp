@@ -137,10 +137,7 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) 
   // velocity about the node, q x v (q the node's offset from the axis).
   double rho_lo, rho_hi, v, c_lo, c_hi;
   const double first_knot = step > 0 ? std::max(0.0, std::floor(a / step) + 1) * step : INFINITY;
-  const bool knot_inside =
-      step > 0 && first_knot < b &&
-      first_knot <=
-          static_cast<double>(s_.path->correction_samples(pass_).values.size() - 1) * step;
+  const bool knot_inside = step > 0 && first_knot < b && first_knot <= last_knot();
   if (!knot_inside) {
     // One smooth piece: the (tabulated) centre lies within A h^2 / 8 of its chord (plus round-off
     // ), its speed within A h / 2 of the larger at the ends, and q x v (whose rate is q x v', as
@@ -227,13 +224,13 @@ double PassageGeometry::rate(const Sample& at, const Vec3& dv) const {
 
 // Cut [a, b] in halves until each piece is settled. On a piece of length h with ends' phases
 // g_a, g_b (each tooth's, wrapped to its nearest crossing):
-// - no tooth can cross there: |g_a| + |g_b| > (|omega| + turn) h for each, the phase cannot reach
-//   zero and back;
+// - no tooth can cross there: |g_a| + |g_b| > top h for each (top the bound of |G'|), the phase
+//   cannot reach zero and back;
 // - no crossing under the ball can lie below `below` there (the ball too high, or out of contact);
-// - G monotone (turn < |omega|, or G' of one sign at both ends with room for the curvature), with
-//   bounds on its rate narrow enough that G's increment over the piece is known to less than a
-//   turn: G is then known unwrapped, and every tooth's crossings are the levels it passes, each
-//   solved in its bracket (solve_level). Far from the axis a whole revolution settles at once.
+// - G monotone (fall < |omega|, or G' of one sign at both ends with room for the curvature): G
+//   is known unwrapped across the piece (advance: the bounds need rho_lo > 0, so the axis cannot
+//   come round the node), and every tooth's crossings are the levels it passes, each solved in
+//   its bracket (solve_level). Far from the axis a whole revolution settles at once.
 // Pieces are split at a correction knot inside first (G' jumps there), else at the middle; below
 // a 1e-10 revolution the sign change alone decides (a touch of the edge no grid can resolve).
 void PassageGeometry::crossings_in(int only, double a, double b, double& below,
@@ -249,9 +246,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   const double w = std::abs(s_.omega), min_len = 1e-10 * s_.rev;
   const int first = only < 0 ? 0 : only, last = only < 0 ? s_.teeth - 1 : only;
   const double step = s_.path->correction_step(pass_);
-  const double last_knot =
-      step > 0 ? static_cast<double>(s_.path->correction_samples(pass_).values.size() - 1) * step
-               : -INFINITY;
+  const double last_knot = this->last_knot();
   // Tooth j's phase is tooth 0's turned by its angle: one probe serves all.
   auto offset = [&](int j) { return s_.tooth_angle[j] - s_.tooth_angle[0]; };
   auto end = [&](double t) {
@@ -271,8 +266,8 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
     return table_.lowest_z(p.lo.at.t, p.hi.at.t) - std::sqrt(s_.R2 - sp.rho_lo * sp.rho_lo);
   };
   auto found = [&](int tooth, double t) {
-    roots.push_back({tooth, t});
     const Probe q = probe(tooth, t);
+    roots.push_back({tooth, t, q});
     if (q.over) below = std::min(below, q.height);
   };
   std::vector<Piece> stack{{end(a), end(b)}};
@@ -404,7 +399,7 @@ double PassageGeometry::walk(double t_b, std::vector<Crossing>& roots, std::uint
         roots.clear();
         crossings_in(tooth, std::max(lo, 0.0), std::min(hi, t_end), limit, roots);
         for (const Crossing& r : roots) {
-          const Probe q = probe(tooth, r.t);
+          const Probe& q = r.q;
           ++visited;
           if (q.over && std::isfinite(q.height)) best = std::min(best, q.height);
         }

@@ -213,12 +213,6 @@ class PassageGeometry {
            s_.reach_xy;
   }
 
-  // When the axis, moving straight from its place at ta to its place at tb, is closest to the
-  // node (ta or tb when that is at an end).
-  double closest_time(double ta, double tb) const {
-    return ta + nearest_on_chord(table_(ta), table_(tb)) * (tb - ta);
-  }
-
   // What bounds the phase's turn on a span [a, b] of the pass (see span()).
   struct Span {
     double rho_lo, rho_hi;  // the node's least and greatest distance from the axis
@@ -260,6 +254,7 @@ class PassageGeometry {
   struct Crossing {
     int tooth;
     double t;
+    Probe q;  // the tooth's probe there
   };
   void crossings_in(int tooth, double a, double b, double& below,
                     std::vector<Crossing>& roots) const;
@@ -291,6 +286,14 @@ class PassageGeometry {
   // [ta, b], G(b) = g_b; G monotone there and the node out of the axis's way (advance).
   double solve_level(double ta, const Probe& a, double b, double g_b, double level) const;
 
+  // The last correction knot's time (-inf on an ideal path): the correction is linear between
+  // knots, so the phase's rate jumps only there.
+  double last_knot() const {
+    const double step = s_.path->correction_step(pass_);
+    return step > 0
+               ? static_cast<double>(s_.path->correction_samples(pass_).values.size() - 1) * step
+               : -INFINITY;
+  }
   // Where on the chord from a to b (0 to 1, in plan) the node's foot lies.
   double nearest_on_chord(const Vec3& a, const Vec3& b) const {
     const double ux = b.x() - a.x(), uy = b.y() - a.y(), len2 = ux * ux + uy * uy;

@@ -212,7 +212,7 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
     double limit = std::min(best, best_node);
     roots_.clear();
     geo.crossings_in(tooth, std::max(lo, 0.0), std::min(hi, t_end), limit, roots_);
-    for (const auto& r : roots_) take(r.tooth, r.t, nullptr);
+    for (const auto& r : roots_) take(r.tooth, r.t, &r.q);
   };
   // The zone around t_b solved for all teeth: [zone[0], zone[1]], empty when the phase is proven
   // monotone around t_b (then each tooth's first crossing is followed from the last node's).
