@@ -445,7 +445,9 @@ double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, doubl
     }
     Root r{};
     Probe q{};
-    if (!solve_root(geo, tooth, match, guess, r, q)) return false;
+    // A secant that ran off (more than `reach` from the guess: the first one was seen 8
+    // revolutions away, outside the stops, which ended the walk at once) is irregular.
+    if (!solve_root(geo, tooth, match, guess, r, q) || std::abs(r.t - guess) > reach) return false;
     t = r.t;
     if (t >= 0 && t <= t_end && std::isfinite(q.height)) {
       ++visited;
