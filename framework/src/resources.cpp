@@ -19,9 +19,10 @@ namespace {
 // writers' buffers), in bytes.
 constexpr std::uint64_t kCoreBytesPerNode = 40;
 // One sample of the force/dynamics time grid: its cut state (with the material test's closure on
-// the heap), its force, the dynamics' input and output, and the correction.
+// the heap), its force, the dynamics' input and output, the correction, and an evaluator's index
+// of it (tooth_passage's range tables hold 40 bytes a sample).
 constexpr std::uint64_t kBytesPerSample =
-    sizeof(CutState) + sizeof(CuttingForce) + 3 * sizeof(Vec3) + 128;
+    sizeof(CutState) + sizeof(CuttingForce) + 3 * sizeof(Vec3) + 128 + 64;
 
 std::uint64_t parse_bytes(const std::string& text) {
   std::size_t end = 0;

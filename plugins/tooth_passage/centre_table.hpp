@@ -8,8 +8,11 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 #include <vector>
 
+#include "range_table.hpp"
 #include "topomill/tool_path.hpp"
 
 namespace topomill::plugins {
@@ -19,6 +22,7 @@ class CentreTable {
   // Covers [t_lo, t_hi]; outside it the path is asked directly.
   CentreTable(const ToolPath& path, std::size_t pass, double t_lo, double t_hi, double tolerance)
       : path_(&path), pass_(pass), correction_(&path.correction_samples(pass)) {
+    index_correction();
     double dt = std::max((t_hi - t_lo) / 16, 1e-9);
     for (int attempt = 0; attempt < 40; ++attempt, dt /= 2) {
       build(t_lo, t_hi, dt);
@@ -75,16 +79,30 @@ class CentreTable {
   // between samples, is at an end or at a sample inside.
   double lowest_z(double ta, double tb) const {
     const double za = nominal(ta).z(), zb = nominal(tb).z(), zm = nominal(0.5 * (ta + tb)).z();
-    double z = std::min(za, zb) - std::abs(za + zb - 2 * zm) - 1e-9;
-    const auto& c = *correction_;
-    if (!c.values.empty()) {
-      double d = std::min(c.at(ta).z(), c.at(tb).z());
-      const double last = static_cast<double>(c.values.size() - 1);
-      for (double k = std::ceil(std::max(0.0, ta) / c.dt); k * c.dt < tb && k <= last; ++k)
-        d = std::min(d, c.values[static_cast<std::size_t>(k)].z());
-      z += d;
-    }
-    return z;
+    return std::min(za, zb) - std::abs(za + zb - 2 * zm) - 1e-9 + correction_box(ta, tb).first.z();
+  }
+
+  // The box [lo, hi] the correction stays in over [ta, tb]: linear between its samples and held
+  // beyond them, it lies within the range of the samples from the one at or before ta to the one
+  // at or after tb. Zero when there is none.
+  std::pair<Vec3, Vec3> correction_box(double ta, double tb) const {
+    if (range_[0].empty()) return {Vec3::Zero(), Vec3::Zero()};
+    const auto [k0, k1] = knots(std::floor(ta / correction_->dt), std::ceil(tb / correction_->dt),
+                                correction_->values.size() - 1);
+    Vec3 lo, hi;
+    for (int i = 0; i < 3; ++i)
+      std::tie(lo[i], hi[i]) = range_[i].over(k0, k1, [&](std::size_t k) { return sample(k, i); });
+    return {lo, hi};
+  }
+  // The correction's top speeds over [ta, tb], in plan and along z (mm/s): its pieces' slopes.
+  std::pair<double, double> correction_speed(double ta, double tb) const {
+    if (speed_[0].empty()) return {0.0, 0.0};
+    const auto [k0, k1] = knots(std::floor(ta / correction_->dt), std::floor(tb / correction_->dt),
+                                correction_->values.size() - 2);
+    auto top = [&](int i) {
+      return speed_[i].over(k0, k1, [&](std::size_t k) { return piece_speed(k, i == 0); }).second;
+    };
+    return {top(0), top(1)};
   }
 
   // Upper bounds of the nominal centre's horizontal and vertical speed (mm/s): the knots' chords,
@@ -99,6 +117,27 @@ class CentreTable {
   }
 
  private:
+  // Sample (or piece) indices k0 <= k1 from times in units of the step, clamped to [0, last].
+  static std::pair<std::size_t, std::size_t> knots(double k0, double k1, std::size_t last) {
+    const auto top = static_cast<double>(last);
+    return {static_cast<std::size_t>(std::clamp(k0, 0.0, top)),
+            static_cast<std::size_t>(std::clamp(std::max(k0, k1), 0.0, top))};
+  }
+  // The correction's sample k along one axis, and its piece k's speed in plan or along z.
+  double sample(std::size_t k, int axis) const { return correction_->values[k][axis]; }
+  double piece_speed(std::size_t k, bool plan) const {
+    const Vec3 d = (correction_->values[k + 1] - correction_->values[k]) / correction_->dt;
+    return plan ? std::hypot(d.x(), d.y()) : std::abs(d.z());
+  }
+  void index_correction() {
+    const std::size_t n = correction_->values.size();
+    if (n == 0) return;
+    for (int i = 0; i < 3; ++i)
+      range_[i] = RangeTable(n, [&](std::size_t k) { return sample(k, i); });
+    if (n < 2) return;
+    for (int i = 0; i < 2; ++i)
+      speed_[i] = RangeTable(n - 1, [&](std::size_t k) { return piece_speed(k, i == 0); });
+  }
   void build(double t_lo, double t_hi, double dt) {
     t0_ = t_lo - 2 * dt;
     inv_dt_ = 1 / dt;
@@ -135,6 +174,8 @@ class CentreTable {
   std::vector<Vec3> knots_;
   using Cubic = std::array<Vec3, 4>;  // coefficients of s^0 .. s^3
   std::vector<Cubic> cubic_;
+  RangeTable range_[3];  // the correction's samples, per axis
+  RangeTable speed_[2];  // its pieces' speeds, in plan and along z
 };
 
 }  // namespace topomill::plugins

@@ -23,7 +23,6 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
       rev(kTwoPi / std::abs(omega)),
       period(rev / rq.tool->teeth()),
       reach(R + rq.path->max_correction()),
-      reach_xy(std::sqrt(2.0) * rq.path->max_correction()),
       margin(margin_),
       kappa(rq.kappa),
       iterations(iterations_),
@@ -50,42 +49,13 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     }
     shift_lo.push_back(lo), shift_hi.push_back(hi);
     lowest_centre.push_back(centre.back().lowest_z(0.0, path->pass(p).t_end));
-    const auto& values = path->correction_samples(p).values;
-    piece_speed.emplace_back();
-    for (std::size_t k = 0; k + 1 < values.size(); ++k) {
-      const Vec3 d = (values[k + 1] - values[k]) / path->correction_step(p);
-      piece_speed.back().emplace_back(std::hypot(d.x(), d.y()), std::abs(d.z()));
-    }
     nominal_speed.push_back(centre.back().top_speed());
-    // The largest speeds over each run of kSpeedWindow + 1 pieces: the fall-rate bound asks for
-    // such a run at every root it bounds, where a loop over it cost as much as the rest.
-    const auto& pieces = piece_speed.back();
-    window_speed.emplace_back(pieces.size());
-    for (std::size_t k = 0; k < pieces.size(); ++k) {
-      auto m = pieces[k];
-      for (std::size_t i = k + 1; i <= std::min(k + kSpeedWindow, pieces.size() - 1); ++i)
-        m.first = std::max(m.first, pieces[i].first),
-        m.second = std::max(m.second, pieces[i].second);
-      window_speed.back()[k] = m;
-    }
   }
 }
 
 std::pair<double, double> PassageSetup::top_speed(std::size_t p, double ta, double tb) const {
-  auto [h, v] = nominal_speed[p];
-  const auto& pieces = piece_speed[p];
-  if (pieces.empty()) return {h, v};
-  const double dt = path->correction_step(p);
-  const auto last = static_cast<double>(pieces.size() - 1);
-  const auto k0 = static_cast<std::size_t>(std::clamp(std::floor(ta / dt), 0.0, last));
-  const auto k1 = static_cast<std::size_t>(std::clamp(std::floor(tb / dt), 0.0, last));
-  if (k1 == k0 + kSpeedWindow) {
-    const auto& w = window_speed[p][k0];
-    return {h + w.first, v + w.second};
-  }
-  double ch = 0, cv = 0;
-  for (std::size_t k = k0; k <= k1; ++k)
-    ch = std::max(ch, pieces[k].first), cv = std::max(cv, pieces[k].second);
+  const auto [h, v] = nominal_speed[p];
+  const auto [ch, cv] = centre[p].correction_speed(ta, tb);
   return {h + ch, v + cv};
 }
 
@@ -155,10 +125,17 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) 
     const double slack = rho_hi * A * h / 2;
     c_lo = std::min(m_a, m_b) - slack, c_hi = std::max(m_a, m_b) + slack;
   } else {
-    rho_lo = std::max(0.0, closest(a, b));
-    const Vec3 ca = table_.nominal(a), cb = table_.nominal(b);
-    rho_hi = std::max(norm(x_ - ca.x(), y_ - ca.y()), norm(x_ - cb.x(), y_ - cb.y())) +
-             A * h * h / 8 + s_.reach_xy + 1e-12;
+    // Several pieces of the correction: the centre is the nominal one (within its sagitta of
+    // the chord) moved by a correction within the box it keeps to over [a, b]; so within the
+    // chord moved to the box's middle, thickened by the sagitta and the box's half diagonal (a
+    // convex region, as advance() needs).
+    const auto [lo, hi] = table_.correction_box(a, b);
+    const Vec3 mid = 0.5 * (lo + hi), ca = table_.nominal(a) + mid, cb = table_.nominal(b) + mid;
+    const double grow = A * h * h / 8 + 0.5 * norm(hi.x() - lo.x(), hi.y() - lo.y()) + 1e-12;
+    const double u = nearest_on_chord(ca, cb);
+    const double ax = x_ - ca.x(), ay = y_ - ca.y(), bx = x_ - cb.x(), by = y_ - cb.y();
+    rho_lo = std::max(0.0, norm(ax - u * (cb.x() - ca.x()), ay - u * (cb.y() - ca.y())) - grow);
+    rho_hi = std::max(norm(ax, ay), norm(bx, by)) + grow;
     v = s_.top_speed(pass_, a, b).first;
     c_hi = rho_hi * v, c_lo = -c_hi;
   }
@@ -384,25 +361,23 @@ double PassageGeometry::walk(double t_b, std::vector<Crossing>& roots, std::uint
                              double below) const {
   const double t_end = this->t_end(), rev = s_.rev;
   double best = INFINITY;
-  for (int tooth = 0; tooth < s_.teeth; ++tooth) {
-    for (int dir : {+1, -1}) {
-      for (int m = (dir > 0 ? 0 : 1); m < 100000; ++m) {
-        // Revolution m from t_b: [t_b + (m - 1/2) rev, t_b + (m + 1/2) rev], and beyond its near
-        // edge all later ones: past the bound's bottom (t_b is within a 20th of a tooth period
-        // of it), if the bound is too high there, nothing from here on can lower the node.
-        const double lo = t_b + (dir * m - 0.5) * rev, hi = lo + rev;
-        if (hi < 0 || lo > t_end) break;
-        const double edge = dir > 0 ? lo : hi;
-        if (m > 0 && dir * (edge - t_b) >= 0.05 * s_.period && bound(edge) >= std::min(best, below))
-          break;
-        double limit = std::min(best, below);
-        roots.clear();
-        crossings_in(tooth, std::max(lo, 0.0), std::min(hi, t_end), limit, roots);
-        for (const Crossing& r : roots) {
-          const Probe& q = r.q;
-          ++visited;
-          if (q.over && std::isfinite(q.height)) best = std::min(best, q.height);
-        }
+  for (int dir : {+1, -1}) {
+    for (int m = (dir > 0 ? 0 : 1); m < 100000; ++m) {
+      // Revolution m from t_b: [t_b + (m - 1/2) rev, t_b + (m + 1/2) rev], and beyond its near
+      // edge all later ones: past the bound's bottom (t_b is within a 20th of a tooth period of
+      // it), if the bound is too high there, nothing from here on can lower the node.
+      const double lo = t_b + (dir * m - 0.5) * rev, hi = lo + rev;
+      if (hi < 0 || lo > t_end) break;
+      const double edge = dir > 0 ? lo : hi;
+      if (m > 0 && dir * (edge - t_b) >= 0.05 * s_.period && bound(edge) >= std::min(best, below))
+        break;
+      double limit = std::min(best, below);
+      roots.clear();
+      crossings_in(-1, std::max(lo, 0.0), std::min(hi, t_end), limit, roots);  // every tooth
+      for (const Crossing& r : roots) {
+        const Probe& q = r.q;
+        ++visited;
+        if (q.over && std::isfinite(q.height)) best = std::min(best, q.height);
       }
     }
   }

@@ -32,10 +32,9 @@ struct PassageSetup {
   const ToolPath* path;
   const ToolGeometry* tool;
   double R, R2, omega, speed;
-  double rev;       // one spindle revolution, s
-  double period;    // one tooth period, s
-  double reach;     // R plus the largest correction: farther across, a pass cannot touch
-  double reach_xy;  // the largest horizontal correction (mm)
+  double rev;     // one spindle revolution, s
+  double period;  // one tooth period, s
+  double reach;   // R plus the largest correction: farther across, a pass cannot touch
   double margin, kappa;
   int iterations, teeth;
   bool along_y;
@@ -49,13 +48,8 @@ struct PassageSetup {
   std::vector<Vec3> shift_lo, shift_hi;
   std::vector<double> lowest_centre;  // per pass, a lower bound of the corrected centre's height
 
-  // Per pass, the speed of the centre's correction on each of its linear pieces, horizontal and
-  // vertical (mm/s), and the nominal centre's top speeds: how fast the tool can move.
-  std::vector<std::vector<std::pair<double, double>>> piece_speed;
+  // Per pass, the nominal centre's top speeds in plan and along z (mm/s).
   std::vector<std::pair<double, double>> nominal_speed;
-  // Per pass and piece k, the largest piece speeds over pieces k .. k + kSpeedWindow.
-  static constexpr std::size_t kSpeedWindow = 16;
-  std::vector<std::vector<std::pair<double, double>>> window_speed;
   // The centre's top horizontal and vertical speed over [ta, tb] on pass p.
   std::pair<double, double> top_speed(std::size_t p, double ta, double tb) const;
 
@@ -204,15 +198,6 @@ class PassageGeometry {
   // That zero, by bisection of [lo, hi] (g(lo) = g_lo) to 1e-13 of a revolution.
   double bisect(int tooth, double lo, double hi, double g_lo) const;
 
-  // A lower bound of the node's distance from the tool's axis over [ta, tb]: the nominal axis
-  // runs straight over the surface's plan (raster along a line), less the correction's reach.
-  double closest(double ta, double tb) const {
-    const Vec3 a = table_.nominal(ta), b = table_.nominal(tb);
-    const double u = nearest_on_chord(a, b);
-    return std::hypot(x_ - a.x() - u * (b.x() - a.x()), y_ - a.y() - u * (b.y() - a.y())) -
-           s_.reach_xy;
-  }
-
   // What bounds the phase's turn on a span [a, b] of the pass (see span()).
   struct Span {
     double rho_lo, rho_hi;  // the node's least and greatest distance from the axis
@@ -224,7 +209,7 @@ class PassageGeometry {
     double top(double w) const { return std::max(w + rise, fall - w); }  // |G'| <= top
   };
   // Rigorous bounds over [a, b]: from the chord of the centre's motion (less its sagitta) when no
-  // correction knot lies inside, else from the nominal path less the correction's reach.
+  // correction knot lies inside, else from the nominal chord moved by the correction's box there.
   Span span(double a, double b) const { return span(sample(a), sample(b)); }
   Span span(const Sample& a, const Sample& b) const;
   // G'(t), the phase's rate (rad/s): the same for every tooth. `dv` is the correction's slope on
@@ -274,9 +259,10 @@ class PassageGeometry {
     return q.over && q.rho < kOnAxis ? q.height : INFINITY;
   }
 
-  // The reference walk: each tooth's revolutions outwards from t_b (the bound's bottom), every
-  // crossing in each found exactly (crossings_in), until the bound proves that nothing farther
-  // can go lower; returns the lowest height over the node (+inf if none).
+  // The reference walk: revolutions outwards from t_b (the bound's bottom), every tooth's
+  // crossings in each found exactly (crossings_in, one subdivision for all teeth), until the
+  // bound proves that nothing farther can go lower; returns the lowest height over the node (+inf
+  // if none).
   // `below` is the node's best height so far: nothing at or above it is looked for.
   double walk(double t_b, std::vector<Crossing>& roots, std::uint64_t& visited,
               double below = INFINITY) const;

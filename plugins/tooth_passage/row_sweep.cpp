@@ -406,8 +406,8 @@ double RowSweep::floor_steepness(std::size_t p, double below) const {
 // in the window (reach = window / bx) and the node within kReach. Where the correction jerks the
 // axis sideways faster than the edge sweeps (|g_t| could vanish), there is no bound.
 double RowSweep::fall_rate(std::size_t p, double t, double rho, double& reach) const {
-  constexpr double kReach = 0.05;  // mm along the row
-  const double w = 0.5 * PassageSetup::kSpeedWindow * s_.path->correction_step(p);
+  constexpr double kReach = 0.05;                    // mm along the row
+  const double w = 8 * s_.path->correction_step(p);  // the window either side of t
   const auto [vxy, vz] = s_.top_speed(p, t - w, t + w);
   const double rho_lo = rho - vxy * w - kReach, rho_hi = rho + vxy * w + kReach;
   if (rho_lo <= 0 || rho_hi >= 0.95 * s_.R) return INFINITY;
