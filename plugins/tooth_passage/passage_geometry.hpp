@@ -153,11 +153,11 @@ class PassageGeometry {
     return r2 < s_.R2 ? c.z() - std::sqrt(s_.R2 - r2) : c.z() + (std::sqrt(r2) - s_.R);
   }
 
-  // The crossing of one tooth near `t`: secant iteration on g, started with `slope` (the spindle
-  // rate when nothing better is known: g's other terms, the lag and the node's azimuth, change
-  // far slower). Returns the time; `slope` gets the last secant and `last` the last probe, which
-  // is at the returned time when it converged (|last.g| < 1e-9 rad: the time to 1e-9 / omega,
-  // about 2e-12 s, the height to about 1e-11 mm).
+  // The crossing of one tooth near `t`: Newton's iteration on g with the phase's rate (rate()),
+  // where that is too flat or undefined (on the axis) the last secant, or `slope` (the spindle
+  // rate when nothing better is known). Returns the time; `slope` gets the last step's slope and
+  // `last` the last probe, which is at the returned time when it converged (|last.g| < 1e-9 rad:
+  // the time to 1e-9 / omega, about 2e-12 s, the height to about 1e-11 mm).
   double crossing(int tooth, double t, double& slope, Probe& last) const;
   double crossing(int tooth, double t) const {
     double slope = s_.omega;
