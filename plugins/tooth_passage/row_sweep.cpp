@@ -354,7 +354,7 @@ bool RowSweep::solve_root(const PassageGeometry& geo, int tooth, const Root* fro
   double slope = from ? from->slope : s_.omega;
   const double t =
       geo.crossing(tooth, from ? from->t + from->drift * (x - from->x) : guess, slope, q);
-  if (!PassageGeometry::converged(q) || !geo.monotone(t - s_.rev, t + s_.rev)) return false;
+  if (!PassageGeometry::converged(q)) return false;
   r = Root{t, from && x != from->x ? (t - from->t) / (x - from->x) : 0.0, slope};
   if (t >= 0 && t <= geo.t_end() && std::isfinite(q.height))
     r.x = x, r.height = q.height, r.fall = fall_rate(geo.pass(), t, q.rho, r.reach);
@@ -380,7 +380,10 @@ double RowSweep::revisit(const PassageGeometry& geo, PassState& st, double best,
       if (stays_above(r, x, target)) continue;
       Root again{};
       Probe q{};
-      if (!solve_root(geo, tooth, &r, 0.0, again, q) || std::abs(again.t - r.t) > 0.25 * rev)
+      // The same passage, and no other of this tooth born within a revolution of it (the phase
+      // monotone there): else the pass is walked again.
+      if (!solve_root(geo, tooth, &r, 0.0, again, q) || std::abs(again.t - r.t) > 0.25 * rev ||
+          !geo.monotone(again.t - rev, again.t + rev))
         return NAN;
       r = again, solved = true;
       if (r.t >= 0 && r.t <= t_end && std::isfinite(q.height)) {

@@ -66,8 +66,8 @@ class RowSweep {
   // The root of `roots` (sorted by time) nearest `t` within `reach`; null if none.
   static Root* nearest(std::vector<Root>& roots, double t, double reach);
   // Corrected: the passage of `tooth` solved at geo's node, started from `from` (the same
-  // passage at an earlier node) or else from `guess`; false when irregular. `q` is the probe
-  // there; `r` gets its height and bound when it lies within the pass and under the ball.
+  // passage at an earlier node) or else from `guess`; false when it does not converge. `q` is the
+  // probe there; `r` gets its height and bound when it lies within the pass and under the ball.
   bool solve_root(const PassageGeometry& geo, int tooth, const Root* from, double guess, Root& r,
                   Probe& q) const;
   double walk_corrected(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
