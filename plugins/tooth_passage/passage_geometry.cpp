@@ -50,6 +50,10 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     shift_lo.push_back(lo), shift_hi.push_back(hi);
     lowest_centre.push_back(centre.back().lowest_z(0.0, path->pass(p).t_end));
     nominal_speed.push_back(centre.back().top_speed());
+    const double v = top_speed(p, -INFINITY, INFINITY).first, half = 0.5 * rev;
+    const double k1 = lag_shape.over(0.0, 0.95 * R).k1;
+    gap_rho.emplace_back(1.01 * (v * half + std::sqrt(1 + k1 * k1) * v / std::abs(omega)),
+                         0.95 * R - v * half);
   }
 }
 
@@ -204,6 +208,13 @@ bool PassageGeometry::turns_by(double lo, double hi, double turn) const {
     a = b;
   }
   return std::abs(std::abs(sum) - turn) < 1e-6;
+}
+
+double PassageGeometry::next_gap(double t, double rho, double dir) const {
+  const double half = 0.5 * s_.rev, w = std::abs(s_.omega);
+  if (const auto [lo, hi] = s_.gap_rho[pass_]; rho >= lo && rho <= hi) return half;
+  const Span sp = span(std::min(t, t + dir * half), std::max(t, t + dir * half));
+  return sp.monotone(w) ? std::min(half, kTwoPi / sp.top(w)) : 0.0;
 }
 
 double PassageGeometry::rate(const Sample& at, const Vec3& dv) const {

@@ -50,6 +50,11 @@ struct PassageSetup {
 
   // Per pass, the nominal centre's top speeds in plan and along z (mm/s).
   std::vector<std::pair<double, double>> nominal_speed;
+  // Per pass, the distances from the axis [lo, hi] within which a crossing's next of the same
+  // tooth is at least half a revolution away: |G' - omega| <= sqrt(1 + Psi_u^2) v / rho
+  // anywhere, so G' stays within (0, 2 omega) while the centre, at its top speed v, stays
+  // farther than sqrt(1 + Psi_u^2) v / omega and within 0.95 R (the lag's slope bounded).
+  std::vector<std::pair<double, double>> gap_rho;
   // The centre's top horizontal and vertical speed over [ta, tb] on pass p.
   std::pair<double, double> top_speed(std::size_t p, double ta, double tb) const;
 
@@ -146,6 +151,12 @@ class PassageGeometry {
     return r2 < s_.R2 ? z - std::sqrt(s_.R2 - r2) : z + (std::sqrt(r2) - s_.R);
   }
 
+  // The node's distance from the axis at t.
+  double distance(double t) const {
+    const Vec3 c = table_(t);
+    return std::hypot(x_ - c.x(), y_ - c.y());
+  }
+
   // The ball's height over the node, continued past its rim so that it stays unimodal.
   double envelope(double t) const {
     const Vec3 c = table_(t);
@@ -224,6 +235,12 @@ class PassageGeometry {
   // equal parts, by the bounds (less than one more turn) or, where they are too loose, exactly
   // (advance).
   bool turns_by(double lo, double hi, double turn) const;
+  // How soon after (dir > 0) or before (dir < 0) a crossing at t, rho from the axis, the same
+  // tooth can cross again: half a revolution where the phase's rate stays within (0, 2 omega)
+  // there (PassageSetup::gap_rho), a whole turn at the top rate where it is monotone, and none
+  // where it can turn back (near the axis the next crossing can come at once, as the node's
+  // azimuth swings round). The walks end on it.
+  double next_gap(double t, double rho, double dir) const;
   // Whether t is the crossing right after (or before) the crossing t_prev of the same tooth: the
   // phase is monotone between and turns by exactly one turn (nothing between).
   bool next_crossing(double t_prev, double t) const {

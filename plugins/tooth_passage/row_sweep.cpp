@@ -265,14 +265,20 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
       // Where the walk stands: a crossing, or the edge of a revolution solved exactly.
       double t_prev = first_root ? t_first : zoned ? zone[dir > 0] : t_b + dir * 0.5 * rev;
       bool at_root = first_root;
+      double rho_prev = first.rho;  // the root's distance from the axis, when at one
       RiseCount rise;
       if (first_root) rise.add(first_height);
       for (int m = 1; m < 100000 && !rise.done(); ++m) {
         if (t_prev < -rev / 2 || t_prev > t_end + rev / 2) break;
         // Every later crossing lies beyond t_bound; past the bottom the envelope only rises, so
-        // if it is already too high there, no later passage can lower the node.
-        const double t_bound = at_root ? t_prev + dir * 0.5 * rev : t_prev;
-        if (dir * (t_bound - t_b) >= beyond && geo.envelope(t_bound) >= std::min(best, best_node))
+        // if it is already too high there, no later passage can lower the node. The gap to the
+        // next crossing (at most half a revolution) is asked only where that would end the walk.
+        auto ends_at = [&](double t_bound) {
+          return dir * (t_bound - t_b) >= beyond &&
+                 geo.envelope(t_bound) >= std::min(best, best_node);
+        };
+        if (ends_at(at_root ? t_prev + dir * 0.5 * rev : t_prev) &&
+            (!at_root || ends_at(t_prev + dir * geo.next_gap(t_prev, rho_prev, dir))))
           break;
         // The next revolution exactly, where the next crossing cannot be proven the next.
         auto solve_revolution = [&] {
@@ -311,7 +317,7 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
           solve_revolution();
           continue;
         }
-        t_prev = t, at_root = true;
+        t_prev = t, at_root = true, rho_prev = q.rho;
         rise.add(take(tooth, t, &q));
       }
     }
@@ -489,8 +495,12 @@ double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, doubl
       for (int m = 1; m < 100000; ++m) {
         const double guess = t_prev + dir * rev;
         if (guess < -rev / 2 || guess > t_end + rev / 2) break;
-        // Every later passage lies beyond half a revolution on.
-        if (dir * (t_prev + dir * 0.5 * rev - st.stop[side]) >= 0) break;
+        // Every later passage lies beyond the next one's least gap (at most half a revolution).
+        if (dir * (t_prev + dir * 0.5 * rev - st.stop[side]) >= 0 &&
+            dir * (t_prev + dir * geo.next_gap(t_prev, geo.distance(t_prev), dir) -
+                   st.stop[side]) >=
+                0)
+          break;
         double t = 0;
         if (!visit(tooth, guess, 0.25 * rev, t, out) || !geo.next_crossing(t_prev, t))
           return irregular = true, INFINITY;

@@ -200,6 +200,17 @@ TEST_CASE("tooth_passage equals a brute force where the axis passes over the nod
            0.005,
            {"tool.teeth=1", "cutting.depth_of_cut=0.1", "cutting.spindle_direction=cw"},
            kDynamics},
+      // A corrected walk that ended half a revolution past a root near the axis, where the
+      // next crossing came sooner (sweep case 21): a node 0.8 nm high.
+      Case{"flat, corrected, loxodrome 0, 1 tooth, cw, ap 0.1",
+           flat,
+           0.0,
+           0.06,
+           0.02,
+           0.0025,
+           {"tool.helix_angle=0", "tool.teeth=1", "cutting.depth_of_cut=0.1",
+            "cutting.spindle_direction=cw"},
+           kDynamics},
       // The lowest point of the ball 44 um off the axis, which passes close (sweep case 34).
       Case{"flat at 0.5 deg, constant lead 30, 3 teeth, ap 0.3",
            flat + "\nangle = 0.5",
@@ -217,8 +228,11 @@ TEST_CASE("tooth_passage equals a brute force where the axis passes over the nod
   INFO("largest difference: row walk " << r.worst[0] * 1e6 << " nm, node walk " << r.worst[1] * 1e6
                                        << " nm over " << r.nodes << " nodes; row walk's worst "
                                        << r.worst_at[0] << "; node walk's " << r.worst_at[1]);
-  CHECK(r.worst[0] <= 1e-6);
-  CHECK(r.worst[1] <= 1e-6);
+  // 0.1 nm, tighter than the 1 nm promised: where right, the walks agree with the brute force
+  // to 0.002 nm (the bisections' ends); a crossing missed beside a near-twin shows as less than
+  // 1 nm (0.8 nm seen, sweep case 21).
+  CHECK(r.worst[0] <= 1e-7);
+  CHECK(r.worst[1] <= 1e-7);
 }
 
 // The whole matrix the fast evaluator promises to be exact on near the axis (scripts/near-axis-
