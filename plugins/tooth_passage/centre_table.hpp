@@ -97,8 +97,9 @@ class CentreTable {
   // The correction's top speeds over [ta, tb], in plan and along z (mm/s): its pieces' slopes.
   std::pair<double, double> correction_speed(double ta, double tb) const {
     if (speed_[0].empty()) return {0.0, 0.0};
-    const auto [k0, k1] = knots(std::floor(ta / correction_->dt), std::floor(tb / correction_->dt),
-                                correction_->values.size() - 2);
+    std::size_t k0, k1;  // (not a structured binding: C++17 lambdas cannot capture one)
+    std::tie(k0, k1) = knots(std::floor(ta / correction_->dt), std::floor(tb / correction_->dt),
+                             correction_->values.size() - 2);
     auto top = [&](int i) {
       return speed_[i].over(k0, k1, [&](std::size_t k) { return piece_speed(k, i == 0); }).second;
     };

@@ -61,11 +61,6 @@ class RowSweep {
   // h lowered to the tip's height when the node lies on the pass's line.
   template <class T0>
   double with_tip(const PassageGeometry& geo, double h, T0 t0) const;
-  // How soon after a crossing the same tooth can cross again, by the phase's bounds on a span
-  // from it (`ahead`, at least half a revolution long): a whole turn at the top rate where the
-  // phase is monotone, at most half a revolution (the walks' step); none where it can turn back
-  // (near the axis the next crossing can come at once, as the node's azimuth swings round).
-  double next_gap(const PassageGeometry::Span& ahead) const;
   // Corrected: the last node's lowest passage solved at (x, y); its height if in contact.
   double seed(double x, double y, NodeCounts& counts);
   // The root of `roots` (sorted by time) nearest `t` within `reach`; null if none.
