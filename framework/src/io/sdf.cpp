@@ -69,6 +69,13 @@ Surface read_sdf(const std::string& path) {
     g.ny = static_cast<std::size_t>(keys["NumProfiles"]);
     g.dx = keys["Xscale"] * 1e3, g.dy = keys["Yscale"] * 1e3;
     zscale = keys["Zscale"];
+    // Each point takes two bytes at least (a digit and a separator): a header claiming more than
+    // the file can hold is refused before the map is allocated (fuzzing found a 147-byte file
+    // asking for 2.2 GB).
+    if (g.size() > bytes.size() / 2)
+      fail(path, "the header says " + std::to_string(g.nx) + " x " + std::to_string(g.ny) +
+                     " points, more than the file's " + std::to_string(bytes.size()) +
+                     " bytes can hold");
     s.map = HeightMap(g);
     for (std::size_t i = 0; i < g.size(); ++i) {
       std::string word;
