@@ -38,15 +38,8 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     centre.emplace_back(*path, p, -pad, path->pass(p).t_end + pad, kTableTolerance);
     const Vec3 c0 = path->nominal_centre(p, 0.0);
     line.push_back(along_y ? c0.x() : c0.y());
-    // The correction is linear between its samples: its range is that of the samples.
-    Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
-    if (const double step = path->correction_step(p); step > 0) {
-      lo = hi = path->correction(p, 0.0);
-      for (std::size_t k = 1; static_cast<double>(k - 1) * step <= path->pass(p).t_end; ++k) {
-        const Vec3 d = path->correction(p, static_cast<double>(k) * step);
-        lo = lo.cwiseMin(d), hi = hi.cwiseMax(d);
-      }
-    }
+    // The correction is linear between its samples and held beyond: its range is theirs.
+    const auto [lo, hi] = centre.back().correction_box(-INFINITY, INFINITY);
     shift_lo.push_back(lo), shift_hi.push_back(hi);
     lowest_centre.push_back(centre.back().lowest_z(0.0, path->pass(p).t_end));
     nominal_speed.push_back(centre.back().top_speed());
