@@ -27,7 +27,7 @@ int cmd_plugins(const Args& args) {
 
   if (json) {
     toml::table root;
-    toml::array dirs, refused;
+    toml::array dirs, refused, shadowed;
     for (const auto& d : catalog.search_path())
       dirs.push_back(toml::table{{"path", d.path}, {"origin", d.origin}});
     for (Slot slot : all_slots()) {
@@ -37,7 +37,11 @@ int cmd_plugins(const Args& args) {
     }
     for (const auto& r : catalog.refused())
       refused.push_back(toml::table{{"path", r.path}, {"reason", r.reason}});
+    for (const auto& s : catalog.shadowed())
+      shadowed.push_back(
+          toml::table{{"name", s.name}, {"path", s.path}, {"shadowed_by", s.shadowed_by}});
     root.insert("search_path", std::move(dirs));
+    root.insert("shadowed", std::move(shadowed));
     root.insert("refused", std::move(refused));
     std::cout << to_json(root);
     return 0;
@@ -50,6 +54,13 @@ int cmd_plugins(const Args& args) {
       std::cout << "  " << e->info.name << "  - " << e->info.doc << "\n      from "
                 << e->library->path << " (" << e->library->name << " " << e->library->version
                 << ")\n";
+  }
+  if (!catalog.shadowed().empty()) {
+    std::cout << "shadowed (not used; the library named after the model, then the earlier "
+                 "directory, wins):\n";
+    for (const auto& s : catalog.shadowed())
+      std::cout << "  " << s.name << " from " << s.path << "\n      shadowed by " << s.shadowed_by
+                << "\n";
   }
   if (!catalog.refused().empty()) {
     std::cout << "refused libraries:\n";

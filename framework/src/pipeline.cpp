@@ -9,6 +9,7 @@
 #include "form_removal.hpp"
 #include "interrupt.hpp"
 #include "log.hpp"
+#include "metrology/form_removal.hpp"
 #include "resources.hpp"
 #include "topomill/surface_shape.hpp"
 #include "topomill/tool_geometry.hpp"
@@ -271,6 +272,11 @@ RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog,
   const std::string form = scene.table("analysis").string("form");
   result.residual = clock.run("form_removal", [&] {
     if (form == "none") return result.raw;
+    if (form == "plane") {  // on the raw XY grid, as `measure --form plane` would fit it
+      Surface raw;
+      raw.map = result.raw;
+      return remove_form(raw, Form::parse("plane", "analysis.form")).map;
+    }
     const double ap = scene.table("cutting").number("depth_of_cut");
     return unroll_residual(result.raw, *m.surface, ap, L.s_lo, L.s_hi, L.spacing);
   });

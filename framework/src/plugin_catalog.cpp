@@ -51,7 +51,7 @@ void PluginCatalog::refuse(const std::string& path, const std::string& reason) {
   log_warning("plugin library '" + path + "' refused: " + reason);
 }
 
-void PluginCatalog::load(const std::string& raw_path) {
+void PluginCatalog::load(const std::string& raw_path, std::size_t dir) {
   std::error_code ec;
   std::string path = fs::weakly_canonical(raw_path, ec).string();
   if (ec) path = raw_path;
@@ -105,15 +105,38 @@ void PluginCatalog::load(const std::string& raw_path) {
   lib->name = m->library_name ? m->library_name : "";
   lib->version = m->library_version ? m->library_version : "";
   lib->handle = handle;
+  lib->dir = dir;
 
-  for (const auto& info : registrar.models()) {
-    auto it = by_name_.find(info.name);
-    if (it != by_name_.end())
-      throw PluginError("model '" + info.name + "' is registered twice: by '" +
-                        it->second->library->path + "' and by '" + path +
-                        "'; remove one library from the search path or rename the model");
-  }
+  // Which of two libraries provides `name` (the rule in the header): lower rank wins.
+  auto rank = [](const PluginLibrary& l, const std::string& name) {
+    const bool named = fs::path(l.path).filename() == kFilePrefix + name + ".so";
+    return std::make_pair(named ? 0 : 1, l.dir);
+  };
+  std::vector<bool> keep(registrar.models().size(), true);
   for (std::size_t i = 0; i < registrar.models().size(); ++i) {
+    const std::string& name = registrar.models()[i].name;
+    auto it = by_name_.find(name);
+    if (it == by_name_.end()) continue;
+    const PluginLibrary& other = *it->second->library;
+    if (other.dir == dir)
+      throw PluginError("model '" + name + "' is registered twice: by '" + other.path +
+                        "' and by '" + path +
+                        "'; remove one library from the search path or rename the model");
+    if (rank(*lib, name) < rank(other, name)) {
+      // The loser's entry stays in entries_ (a caller may hold it); it is no longer found.
+      shadowed_.push_back({name, other.path, path});
+      by_name_.erase(it);
+    } else {
+      shadowed_.push_back({name, path, other.path});
+      keep[i] = false;
+    }
+  }
+  for (const auto& s : shadowed_)
+    if (s.path == path || s.shadowed_by == path)
+      log_debug("model '" + s.name + "' from '" + s.path + "' is shadowed by '" + s.shadowed_by +
+                "'");
+  for (std::size_t i = 0; i < registrar.models().size(); ++i) {
+    if (!keep[i]) continue;
     auto entry = std::make_unique<ModelEntry>();
     entry->info = std::move(registrar.models()[i]);
     entry->schema = std::move(schemas[i]);
@@ -129,12 +152,12 @@ void PluginCatalog::load(const std::string& raw_path) {
 const ModelEntry* PluginCatalog::find(const std::string& name) {
   auto known = by_name_.find(name);
   if (known != by_name_.end()) return known->second;
-  for (const auto& dir : dirs_) {
-    fs::path candidate = fs::path(dir.path) / (kFilePrefix + name + ".so");
+  for (std::size_t d = 0; d < dirs_.size(); ++d) {
+    fs::path candidate = fs::path(dirs_[d].path) / (kFilePrefix + name + ".so");
     std::error_code ec;
     if (!fs::exists(candidate, ec)) continue;
     std::size_t refused_before = refused_.size();
-    load(candidate.string());
+    load(candidate.string(), d);
     known = by_name_.find(name);
     if (known != by_name_.end()) return known->second;
     if (refused_.size() > refused_before)
@@ -149,7 +172,8 @@ const ModelEntry* PluginCatalog::find(const std::string& name) {
 void PluginCatalog::load_all() {
   if (all_loaded_) return;
   all_loaded_ = true;
-  for (const auto& dir : dirs_) {
+  for (std::size_t d = 0; d < dirs_.size(); ++d) {
+    const Dir& dir = dirs_[d];
     std::error_code ec;
     if (!fs::is_directory(dir.path, ec)) {
       log_debug("plugin directory '" + dir.path + "' (" + dir.origin + ") does not exist");
@@ -159,7 +183,7 @@ void PluginCatalog::load_all() {
     for (const auto& e : fs::directory_iterator(dir.path, ec))
       if (e.is_regular_file() && is_library_file(e.path())) files.push_back(e.path());
     std::sort(files.begin(), files.end());  // a stable order makes duplicate errors reproducible
-    for (const auto& f : files) load(f.string());
+    for (const auto& f : files) load(f.string(), d);
   }
 }
 

@@ -4,6 +4,12 @@
 // libtopomill_NAME.so in each search directory (the convention every built-in plugin follows), so a
 // run opens only the libraries its scene names. Only when that fails, or when a full listing is
 // asked for, is every library on the search path opened.
+//
+// One rule decides which library provides a model, whichever way it was found (so `run`, `check`
+// and `plugins` agree): a library named after the model (libtopomill_NAME.so) before one that is
+// not, then the earlier directory of the search path. The loser is "shadowed": listed by
+// `topomill plugins`, never an error. Two libraries of one directory registering one name are an
+// error (neither is more deliberate than the other).
 #pragma once
 
 #include <map>
@@ -23,6 +29,7 @@ struct PluginLibrary {
   std::string path;
   std::string name, version;
   std::shared_ptr<boost::dll::shared_library> handle;
+  std::size_t dir = 0;  // index of its directory in the search path
   ~PluginLibrary();
 };
 
@@ -31,6 +38,13 @@ struct ModelEntry {
   std::shared_ptr<const PluginLibrary> library;
   ModelInfo info;
   Schema schema;
+};
+
+// A model registered by a library that lost to another by the rule above.
+struct ShadowedModel {
+  std::string name;
+  std::string path;         // the library not used
+  std::string shadowed_by;  // the library used
 };
 
 struct RefusedLibrary {
@@ -65,6 +79,7 @@ class PluginCatalog {
   std::vector<std::string> names(Slot slot) const;
   // Libraries that were refused, with why; a refused library never stops the program by itself.
   const std::vector<RefusedLibrary>& refused() const { return refused_; }
+  const std::vector<ShadowedModel>& shadowed() const { return shadowed_; }
 
   // Makes a model; the object keeps its library loaded for as long as it lives. A ParamError from
   // the constructor becomes an InputError at the parameter's scene position.
@@ -77,7 +92,7 @@ class PluginCatalog {
 
  private:
   std::unique_ptr<Model> construct(const ModelEntry& entry, const Params& params, Slot slot) const;
-  void load(const std::string& path);
+  void load(const std::string& path, std::size_t dir);
   void refuse(const std::string& path, const std::string& reason);
 
   std::vector<Dir> dirs_;
@@ -85,6 +100,7 @@ class PluginCatalog {
   std::vector<std::unique_ptr<ModelEntry>> entries_;
   std::map<std::string, ModelEntry*> by_name_;
   std::vector<RefusedLibrary> refused_;
+  std::vector<ShadowedModel> shadowed_;
   bool all_loaded_ = false;
 };
 

@@ -3,6 +3,7 @@
 #include <fstream>
 #include "topomill/version.hpp"
 
+#include "plugin_catalog.hpp"
 #include "support/run_command.hpp"
 
 using testing::fixture_dir;
@@ -93,6 +94,48 @@ TEST_CASE("a model registered by two libraries is an error naming both", "[plugi
                             fixture_dir("duplicate") +
                             "/libtopomill_fixture_duplicate_a.so' and by '" +
                             fixture_dir("duplicate") + "/libtopomill_fixture_duplicate_b.so'"));
+}
+
+TEST_CASE("a library of one directory is also a duplicate when it is named after the model",
+          "[plugins]") {
+  // The same library under the conventional name beside the two above: still ambiguous.
+  const auto r = run_topomill("describe fixture_duplicate -P '" + fixture_dir("duplicate") + "'");
+  CHECK(r.exit_code == 2);
+  CHECK(contains(r.err, "is registered twice"));
+}
+
+TEST_CASE("a plugin named like a built-in shadows it in run, check and plugins alike",
+          "[plugins]") {
+  // One rule (plugin_catalog.hpp): the library named after the model, then the earlier
+  // directory. Before, `plugins` said "registered twice" (exit 2) while run and check used it.
+  const std::string dir = fixture_dir("shadow");
+  const std::string builtin = topomill::PluginCatalog::builtin_dir();
+  const auto listed = run_topomill("plugins -P '" + dir + "'");
+  INFO(listed.err);
+  REQUIRE(listed.exit_code == 0);
+  CHECK(contains(listed.out, "inclined_plane  - fixture: shadows the built-in inclined_plane\n"
+                             "      from " + dir + "/libtopomill_inclined_plane.so"));
+  CHECK(contains(listed.out, "  inclined_plane from " + builtin +
+                                 "/libtopomill_inclined_plane.so\n      shadowed by " + dir +
+                                 "/libtopomill_inclined_plane.so"));
+  const auto json = run_topomill("plugins --json -P '" + dir + "'");
+  CHECK(contains(json.out, "\"shadowed_by\" : \"" + dir + "/libtopomill_inclined_plane.so\""));
+
+  const std::string used = "workpiece: inclined_plane from " + dir;
+  const std::string scene = "configs/bench/flat_vertical.toml";
+  const auto checked = run_topomill("check " + scene + " -v -P '" + dir + "'");
+  INFO(checked.err);
+  CHECK(checked.exit_code == 0);
+  CHECK(contains(checked.err, used));
+  const std::string out = testing::temp_dir("shadow_run");
+  const auto ran = run_topomill("run " + scene + " -v -P '" + dir + "' --out '" + out +
+                                "' --set region.spacing=0.05 --set output.formats=[]");
+  INFO(ran.err);
+  CHECK(ran.exit_code == 0);
+  CHECK(contains(ran.err, used));
+  // Without the directory the built-in is used.
+  CHECK(contains(run_topomill("check " + scene + " -v").err,
+                 "workpiece: inclined_plane from " + builtin));
 }
 
 TEST_CASE("a throwing constructor fails the run cleanly and a ParamError points at the scene",

@@ -58,7 +58,7 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
                      "cannot write into the output directory '" + out_dir + "': " + ec.message());
 
   const auto t0 = std::chrono::steady_clock::now();
-  const bool unrolled = scene.table("analysis").string("form") != "none";
+  const bool unrolled = scene.table("analysis").string("form") == "nominal";  // else on XY
   std::vector<std::string> files;
   auto path = [&](const std::string& name) {
     files.push_back(name);
