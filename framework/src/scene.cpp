@@ -297,9 +297,9 @@ void SceneDocument::apply_override(const std::string& assignment) {
       const std::string digits = part.substr(bracket + 1, part.size() - bracket - 2);
       if (part.back() != ']' || digits.empty() || digits.size() > 9 ||
           digits.find_first_not_of("0123456789") != std::string::npos)
-        throw InputError(origin, path,
-                         "'" + part + "': expected an element number in brackets, such as " +
-                             key + "[0]");
+        throw InputError(
+            origin, path,
+            "'" + part + "': expected an element number in brackets, such as " + key + "[0]");
       const std::size_t index = std::stoul(digits);
       toml::array* arr = (*table)[key].as_array();
       if (!arr || index >= arr->size() || !(*arr)[index].as_table())

@@ -113,8 +113,10 @@ TEST_CASE("a plugin named like a built-in shadows it in run, check and plugins a
   const auto listed = run_topomill("plugins -P '" + dir + "'");
   INFO(listed.err);
   REQUIRE(listed.exit_code == 0);
-  CHECK(contains(listed.out, "inclined_plane  - fixture: shadows the built-in inclined_plane\n"
-                             "      from " + dir + "/libtopomill_inclined_plane.so"));
+  CHECK(contains(listed.out,
+                 "inclined_plane  - fixture: shadows the built-in inclined_plane\n"
+                 "      from " +
+                     dir + "/libtopomill_inclined_plane.so"));
   CHECK(contains(listed.out, "  inclined_plane from " + builtin +
                                  "/libtopomill_inclined_plane.so\n      shadowed by " + dir +
                                  "/libtopomill_inclined_plane.so"));

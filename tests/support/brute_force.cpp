@@ -1,0 +1,88 @@
+#include "support/brute_force.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace testing {
+
+namespace {
+constexpr double kTwoPi = 2 * M_PI;
+double wrap(double a) {
+  return a - kTwoPi * std::floor(a / kTwoPi + 0.5);
+}
+
+}  // namespace
+
+double brute_force_height(const topomill::ToolGeometry& tool, const topomill::ToolPath& path,
+                          double x, double y) {
+  const double R = tool.radius(), rev = kTwoPi / std::abs(path.spindle_rate());
+  const double uncut = path.surface().height(y);
+  // Fastest the centre moves in plan: the feed (plus the offset's turn on a curve, within 10 %)
+  // and the correction's steepest piece.
+  double v =
+      1.1 * path.feed_speed() * (1 + path.offset() / std::abs(path.surface().curvature_radius()));
+  for (std::size_t p = 0; p < path.passes(); ++p) {
+    const auto& c = path.correction_samples(p);
+    for (std::size_t k = 0; k + 1 < c.values.size(); ++k)
+      v = std::max(v, path.feed_speed() + std::hypot(c.values[k + 1].x() - c.values[k].x(),
+                                                     c.values[k + 1].y() - c.values[k].y()) /
+                                              c.dt);
+  }
+  double best = uncut;
+  auto phase = [&](std::size_t p, int tooth, double t, double& height, double& rho) {
+    const topomill::Vec3 c = path.centre(p, t);
+    const double qx = x - c.x(), qy = y - c.y();
+    rho = std::hypot(qx, qy);
+    if (rho >= R) return height = INFINITY, 0.0;
+    height = c.z() - std::sqrt(R * R - rho * rho);
+    const topomill::Vec3 e = tool.edge_point(tooth, std::asin(rho / R), path.spindle_angle(p, t));
+    return wrap(std::atan2(e.y(), e.x()) - std::atan2(qy, qx));
+  };
+  for (std::size_t p = 0; p < path.passes(); ++p) {
+    const double t_end = path.pass(p).t_end;
+    for (int tooth = 0; tooth < tool.teeth(); ++tooth) {
+      // Revolution by revolution, those in which the ball can reach below the uncut surface.
+      for (double r0 = 0; r0 < t_end; r0 += rev) {
+        const topomill::Vec3 c = path.centre(p, r0 + rev / 2);
+        const double reach = std::hypot(x - c.x(), y - c.y()) - v * rev / 2;
+        // The centre's lowest point in the revolution: it descends along a slope (2.6 um a
+        // revolution at 0.5 deg), so its height at mid revolution is no bound.
+        double z_low = c.z();
+        for (int k = 0; k <= 64; ++k)
+          z_low = std::min(z_low, path.centre(p, r0 + k * rev / 64).z());
+        if (reach >= R ||
+            z_low - std::sqrt(R * R - std::pow(std::max(reach, 0.0), 2)) >= best + 1e-3)
+          continue;
+        double t0 = r0, h0 = 0, rho0 = 0, g0 = phase(p, tooth, t0, h0, rho0);
+        const double r1 = std::min(r0 + rev, t_end);
+        while (t0 < r1) {
+          // A fiftieth of a radian of the node's azimuth, a 4096th of a revolution: a step of a
+          // fiftieth (1024th) lost a pair of crossings 24 nm below the rest with vibration.
+          const double step = std::clamp(0.005 * rho0 / v, 1e-10 * rev, rev / 4096);
+          const double t1 = std::min(t0 + step, r1);
+          double h1 = 0, rho1 = 0;
+          const double g1 = phase(p, tooth, t1, h1, rho1);
+          if ((g0 < 0) != (g1 < 0) && std::abs(g1 - g0) < M_PI) {
+            double lo = t0, hi = t1, glo = g0;
+            for (int it = 0; it < 60; ++it) {
+              const double mid = 0.5 * (lo + hi);
+              double hm = 0, rm = 0;
+              const double gm = phase(p, tooth, mid, hm, rm);
+              ((gm < 0) == (glo < 0) ? lo : hi) = mid;
+              if ((gm < 0) == (glo < 0)) glo = gm;
+            }
+            double hr = 0, rr = 0;
+            phase(p, tooth, 0.5 * (lo + hi), hr, rr);
+            best = std::min(best, hr);
+          }
+          // The tip is a point of every edge: a node on the pass's line is cut by it.
+          if (std::abs(x - path.pass(p).x) < 1e-9 && rho1 < v * step) best = std::min(best, h1);
+          t0 = t1, g0 = g1, rho0 = rho1;
+        }
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace testing
