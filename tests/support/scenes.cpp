@@ -27,10 +27,13 @@ std::string dynamics_tables() {
 }
 
 topomill::RunResult run_scene(const std::string& toml, const std::vector<std::string>& overrides,
-                              unsigned threads) {
+                              unsigned threads, const std::vector<std::string>& plugin_dirs) {
   auto doc = topomill::SceneDocument::parse_string(toml, "test-scene.toml");
   for (const auto& o : overrides) doc.apply_override(o);
-  topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
+  std::vector<topomill::PluginCatalog::Dir> dirs;
+  for (const auto& d : plugin_dirs) dirs.push_back({d, "--plugin-path"});
+  dirs.push_back({topomill::PluginCatalog::builtin_dir(), "built-in"});
+  topomill::PluginCatalog catalog(dirs);
   topomill::Scene scene = doc.resolve(catalog);
   topomill::RunOptions options;
   options.threads = threads;

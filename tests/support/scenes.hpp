@@ -15,8 +15,10 @@ std::string paper_scene(const std::string& workpiece, double lambda_deg, double 
 // Vibration (two modes) and deflection with the armarego force: tables to append to a scene.
 std::string dynamics_tables();
 
-// Resolves `toml` with `overrides` ("table.key=value", as --set) and runs it.
+// Resolves `toml` with `overrides` ("table.key=value", as --set) and runs it; `plugin_dirs` are
+// searched before the built-in plugins (fixture plugins).
 topomill::RunResult run_scene(const std::string& toml,
-                              const std::vector<std::string>& overrides = {}, unsigned threads = 2);
+                              const std::vector<std::string>& overrides = {}, unsigned threads = 2,
+                              const std::vector<std::string>& plugin_dirs = {});
 
 }  // namespace testing
