@@ -77,28 +77,88 @@ TEST_CASE("the ball-end force matches MODEL.md's closed form", "[force]") {
   CHECK(force->evaluate(*tool, st).force.norm() == 0.0);
 }
 
-TEST_CASE("Eq. 20's tangential, radial and axial directions are orthonormal", "[force]") {
-  for (double a : {0.1, 0.7, 1.5})
-    for (double t : {0.0, 1.0, 2.0, 4.0}) {
-      Eigen::Matrix3d m;
-      m << -std::cos(t), -std::sin(a) * std::sin(t), -std::cos(a) * std::sin(t),  //
-          std::sin(t), -std::sin(a) * std::cos(t), -std::cos(a) * std::cos(t),    //
-          0, std::cos(a), -std::sin(a);
-      CHECK((m.transpose() * m - Eigen::Matrix3d::Identity()).norm() == Approx(0).margin(1e-14));
+namespace {
+struct Coefficients {
+  double ktc, krc, kac, kte, kre, kae;
+};
+struct Quadrature {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  double load_centre = 0;
+};
+// Eq. 18-21 by a midpoint rule of 20000 pieces per tooth, written from MODEL.md and not from the
+// plugin: the element's azimuth and its edge length from edge_point (a central difference for
+// the length), Eq. 19's chip as the feed projected on the ball normal, Eq. 20 in Lee and
+// Altintas' angle theta (clockwise from +Y, a cw tool). A ccw tool is the mirror image (x -> -x)
+// of a cw one: its element at azimuth phi is the cw element at pi - phi under the mirrored feed,
+// and its force the mirrored force. The load centre: the force-weighted mean height above the
+// tip, weights |dF| per element and tooth.
+Quadrature quadrature(const topomill::ToolGeometry& tool, const Coefficients& k,
+                      const Eigen::Vector3d& feed, double fz, double a_lo, double a_hi,
+                      double spindle, bool ccw) {
+  const int n = 20000;
+  const double R = tool.radius(), da = (a_hi - a_lo) / n;
+  const Eigen::Vector3d f = ccw ? Eigen::Vector3d(-feed.x(), feed.y(), feed.z()) : feed;
+  Quadrature q;
+  double weight = 0, moment = 0;
+  for (int j = 0; j < tool.teeth(); ++j)
+    for (int m = 0; m < n; ++m) {
+      const double a = a_lo + (m + 0.5) * da;
+      const auto p = tool.edge_point(j, a, spindle);
+      const double phi = std::atan2(p.y(), p.x());
+      const double ds =
+          (tool.edge_point(j, a + 1e-6, spindle) - tool.edge_point(j, a - 1e-6, spindle)).norm() /
+          2e-6 * da;
+      const double db = R * da;
+      const double theta = M_PI / 2 - (ccw ? M_PI - phi : phi);
+      const double sa = std::sin(a), ca = std::cos(a), st = std::sin(theta), ct = std::cos(theta);
+      const double t = fz * f.dot(Eigen::Vector3d(sa * st, sa * ct, -ca));
+      if (t <= 0) continue;
+      const double ft = k.kte * ds + k.ktc * t * db, fr = k.kre * ds + k.krc * t * db,
+                   fa = k.kae * ds + k.kac * t * db;
+      Eigen::Vector3d d(-ft * ct - fr * sa * st - fa * ca * st,
+                        ft * st - fr * sa * ct - fa * ca * ct, fr * ca - fa * sa);
+      if (ccw) d.x() = -d.x();
+      q.force += d;
+      weight += d.norm(), moment += d.norm() * R * (1 - ca);
     }
+  q.load_centre = weight > 0 ? moment / weight : 0;
+  return q;
 }
+}  // namespace
 
-TEST_CASE("the load centre is the force-weighted height of the engaged edge", "[force]") {
-  auto tool = make_model<topomill::ToolGeometry>("ball_end_loxodrome", {{"radius", 5}});
-  auto force = make_model<topomill::ForceModel>("armarego", {});
-  topomill::CutState st = cut_state({0, 1, 0}, 0.3, 0.6);
-  for (double spindle : {0.0, 1.0, 2.0}) {
-    st.spindle_angle = spindle;
-    const auto c = force->evaluate(*tool, st);
-    if (c.force.norm() == 0) continue;
-    CHECK(c.load_centre >= 5 * (1 - std::cos(0.3)) - 1e-12);
-    CHECK(c.load_centre <= 5 * (1 - std::cos(0.6)) + 1e-12);
-  }
+TEST_CASE("the force equals a quadrature of Eq. 18-21 with helix, edge forces, teeth, directions",
+          "[force]") {
+  // Table 3's coefficients (edge terms included), three teeth, both edge models, both spindle
+  // directions, level and sloped feeds, several spindle angles and engagements.
+  const Coefficients k{1512.8, 656.8, -1123.4, 198.5, 110.1, -42.4};
+  auto force = make_model<topomill::ForceModel>("armarego", {{"Ktc", k.ktc},
+                                                             {"Krc", k.krc},
+                                                             {"Kac", k.kac},
+                                                             {"Kte", k.kte},
+                                                             {"Kre", k.kre},
+                                                             {"Kae", k.kae},
+                                                             {"element_angle", 0.005}});
+  const double slope = 20 * M_PI / 180;
+  for (const char* edge : {"ball_end_loxodrome", "ball_end_constant_lead"})
+    for (bool ccw : {false, true})
+      for (const Eigen::Vector3d& feed :
+           {Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, std::cos(slope), -std::sin(slope)),
+            Eigen::Vector3d(std::cos(slope), 0, std::sin(slope))})
+        for (double spindle : {0.3, 1.9, 4.0}) {
+          auto tool = make_model<topomill::ToolGeometry>(
+              edge, {{"radius", 5}, {"teeth", 3}, {"helix_angle", 30}});
+          topomill::CutState st = cut_state(feed, 0.15, 0.9);
+          st.spindle_rate = ccw ? 1 : -1;
+          st.spindle_angle = spindle;
+          const auto got = force->evaluate(*tool, st);
+          const auto want = quadrature(*tool, k, feed, 0.1, 0.15, 0.9, spindle, ccw);
+          INFO(edge << (ccw ? " ccw" : " cw") << ", feed " << feed.transpose() << ", spindle "
+                    << spindle << ": " << got.force.transpose() << " N against "
+                    << want.force.transpose() << " N; load centre " << got.load_centre
+                    << " against " << want.load_centre << " mm");
+          CHECK((got.force - want.force).norm() < 2e-4 * want.force.norm() + 0.05);
+          CHECK(got.load_centre == Approx(want.load_centre).epsilon(2e-4));
+        }
 }
 
 // Elements are fixed on the tool; one the CATW's end cuts counts for the part inside. Without that
