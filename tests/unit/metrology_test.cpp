@@ -173,6 +173,103 @@ TEST_CASE("the Gaussian filter passes 50 % at the cut-off, long waves whole, sho
   CHECK(amplitude_after(10 * lc, false) < 0.01);  // and removes the waviness
 }
 
+TEST_CASE("arc removal leaves a ripple's 2A / pi and a bump's height with its sign",
+          "[metrology][form]") {
+  // A convex arc (r 50 mm) carrying a ripple along the cylinder's axis (whole periods, so the
+  // fitted circle cannot take any of it): Sa of a cosine of amplitude A is 2A / pi. The arc spans
+  // 0.02 deg; four whole periods of 100 nodes.
+  const double A = 1e-3;
+  auto rippled = analytic(400, 41, 0.0005, [](double x, double y) {
+    return std::sqrt(50.0 * 50.0 - (y - 0.1) * (y - 0.1)) - 50 +
+           1e-3 * std::cos(2 * M_PI * x / 0.05);
+  });
+  const Surface r = remove_form(rippled, Form::parse("arc", "--form"));
+  CHECK(roughness(r.map).Sa == Approx(2 * A / M_PI).epsilon(1e-3));
+  // A bump 2 um high on one node of a concave arc stands out by +2 um (a fit that returned zeros,
+  // or the residual with the wrong sign, gives 0 or -2 um).
+  auto bumped = analytic(21, 41, 0.002, [](double, double y) {
+    return 20 - std::sqrt(20.0 * 20.0 - (y + 0.3) * (y + 0.3));
+  });
+  bumped.map.at(10, 20) += 2e-3;
+  const Surface b = remove_form(bumped, Form::parse("arc", "--form"));
+  CHECK(b.map.at(10, 20) == Approx(2e-3).epsilon(0.01));  // the fit takes 0.3 % of it
+  CHECK(std::abs(b.map.at(3, 5)) < 1e-5);
+}
+
+TEST_CASE("the Gaussian filter along y is the filter along x of the transposed map",
+          "[metrology][filter]") {
+  // Two spacings and a map with no symmetry, so that a pass along the wrong axis, or with the
+  // other axis' spacing, shows.
+  Surface s;
+  Grid g;
+  g.nx = 61, g.ny = 47, g.dx = 0.001, g.dy = 0.0015;
+  s.map = HeightMap(g);
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i)
+      s.map.at(i, j) = std::sin(0.37 * i + 0.05 * i * j) + 0.3 * std::cos(0.8 * j);
+  Surface t;
+  Grid tg;
+  tg.nx = g.ny, tg.ny = g.nx, tg.dx = g.dy, tg.dy = g.dx;
+  t.map = HeightMap(tg);
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i) t.map.at(j, i) = s.map.at(i, j);
+  for (double cutoff : {0.008, 0.025}) {
+    const Surface a = gaussian_lowpass(s, cutoff), b = gaussian_lowpass(t, cutoff);
+    double worst = 0;
+    for (std::size_t j = 0; j < g.ny; ++j)
+      for (std::size_t i = 0; i < g.nx; ++i)
+        worst = std::max(worst, std::abs(a.map.at(i, j) - b.map.at(j, i)));
+    CHECK(worst < 1e-12);
+  }
+}
+
+TEST_CASE("invalid points take no part in parameters, filters and fits", "[metrology][invalid]") {
+  // What an invalid point holds (a reader's NaN, a huge spike) must change nothing: each result
+  // equals the one computed over the valid points alone.
+  auto base = analytic(40, 30, 0.002, [](double x, double y) {
+    return 0.01 * x - 0.02 * y + 1e-3 * std::sin(200 * x) * std::cos(150 * y);
+  });
+  base.valid.assign(base.map.z.size(), 1);
+  for (std::size_t k : {7u, 300u, 301u, 1111u}) base.valid[k] = 0;
+  Surface nan = base, spike = base;
+  for (std::size_t k = 0; k < base.map.z.size(); ++k)
+    if (!base.valid[k]) nan.map.z[k] = NAN, spike.map.z[k] = 1e6;
+
+  // Height parameters against sums written here over the valid points.
+  const auto plane = remove_form(nan, Form::parse("plane", "--form"));
+  double n = 0, mean = 0, sa = 0, sq = 0, hi = -INFINITY, lo = INFINITY;
+  for (std::size_t k = 0; k < plane.map.z.size(); ++k)
+    if (plane.is_valid(k)) n += 1, mean += plane.map.z[k];
+  mean /= n;
+  for (std::size_t k = 0; k < plane.map.z.size(); ++k)
+    if (plane.is_valid(k)) {
+      const double h = plane.map.z[k] - mean;
+      sa += std::abs(h), sq += h * h, hi = std::max(hi, h), lo = std::min(lo, h);
+    }
+  const auto r = roughness(plane.map, plane.valid);
+  CHECK(r.Sa == Approx(sa / n).epsilon(1e-12));
+  CHECK(r.Sq == Approx(std::sqrt(sq / n)).epsilon(1e-12));
+  CHECK(r.Sp == Approx(hi).epsilon(1e-12));
+  CHECK(r.Sv == Approx(-lo).epsilon(1e-12));
+  for (double v : {r.Ssk, r.Sku, r.Sdq, r.Sdr}) CHECK(std::isfinite(v));
+
+  // Fits and filters: the NaN-holding and the spike-holding maps agree at every valid point.
+  for (const char* form : {"plane", "poly:2", "arc"}) {
+    const auto a = remove_form(nan, Form::parse(form, "--form")),
+               b = remove_form(spike, Form::parse(form, "--form"));
+    for (std::size_t k = 0; k < a.map.z.size(); ++k)
+      if (a.is_valid(k)) REQUIRE(a.map.z[k] == Approx(b.map.z[k]).margin(1e-12));
+  }
+  for (double cutoff : {0.008, 0.02}) {
+    const auto a = gaussian_lowpass(nan, cutoff), b = gaussian_lowpass(spike, cutoff);
+    for (std::size_t k = 0; k < a.map.z.size(); ++k)
+      if (a.is_valid(k)) {
+        REQUIRE(std::isfinite(a.map.z[k]));
+        REQUIRE(a.map.z[k] == Approx(b.map.z[k]).margin(1e-12));
+      }
+  }
+}
+
 TEST_CASE("corrupt and inconsistent files are refused with what is wrong", "[metrology][errors]") {
   const std::string dir = testing::temp_dir("corrupt");
   std::filesystem::create_directories(dir);

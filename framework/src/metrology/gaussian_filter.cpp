@@ -42,7 +42,7 @@ Surface gaussian_lowpass(const Surface& s, double cutoff) {
   std::vector<double> zm(g.size()), m(g.size()), tmp;
   for (std::size_t i = 0; i < g.size(); ++i) {
     m[i] = s.is_valid(i) ? 1.0 : 0.0;
-    zm[i] = m[i] * s.map.z[i];
+    zm[i] = s.is_valid(i) ? s.map.z[i] : 0.0;  // not m z: an invalid point may hold NaN
   }
   const auto kx = kernel(cutoff, g.dx), ky = kernel(cutoff, g.dy);
   convolve(zm, tmp, g, kx, true);
