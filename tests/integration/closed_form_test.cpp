@@ -103,13 +103,27 @@ TEST_CASE("lambda = 0 (the tool tip, zero cutting speed) and lambda near 90 deg 
   const auto tip =
       run_scene(paper_scene("plugin = 'convex_arc'\nradius = 50.0", 0.0, 0.3, 0.3, 0.01));
   for (double z : tip.residual.z) REQUIRE(std::isfinite(z));
-  CHECK(tip.roughness.Sa > 0);
-  CHECK(tip.roughness.Sz * 1e3 < 10 * flat_scallop_um(5, 0.3));
+  // Across the passes the ball leaves the flat scallop (the arc's axis is along X); along them
+  // the tip's marks add a little (tooth_passage at 1 um: Sz 2.553 um, Sa 0.5662 um).
+  // (zmap's nearest node lowers it by up to the slope there, 0.03, times half a cell's diagonal)
+  CHECK(cusp_height_um(tip.residual, false) == Approx(flat_scallop_um(5, 0.3)).margin(0.22));
+  CHECK(tip.roughness.Sz * 1e3 >= flat_scallop_um(5, 0.3));
+  CHECK(tip.roughness.Sz * 1e3 < 1.25 * flat_scallop_um(5, 0.3));
+  CHECK(tip.roughness.Sa * 1e3 == Approx(0.5662).epsilon(0.1));  // zmap at 10 um: 0.5939
 
   const auto steep =
       run_scene(paper_scene("plugin = 'inclined_plane'\nangle = 89.9", 89.9, 0.1, 0.1, 0.02));
   for (double z : steep.residual.z) REQUIRE(std::isfinite(z));
   CHECK(std::isfinite(steep.roughness.Sa));
+  // The ball is a sphere: the scallop between passes is the flat one at any inclination. Exact
+  // heights (tooth_passage) at 60 deg on a patch that holds a cusp line (x = 0.15 mm) and a whole
+  // feed period along it (fz / cos 60 deg = 0.2 mm). Not steeper: zmap's nearest node on a face
+  // at 89.9 deg is off by the slope, 570, times half a cell, and tooth_passage takes minutes at
+  // 80 deg and above (found here; see the session's notes).
+  const auto exact =
+      run_scene(paper_scene("plugin = 'inclined_plane'\nangle = 60.0", 60.0, 0.4, 0.25, 0.01),
+                {"evaluator.plugin=tooth_passage"});
+  CHECK(cusp_height_um(exact.residual, false) == Approx(flat_scallop_um(5, 0.3)).epsilon(0.01));
 
   // On a convex arc the patch at 89.9 deg runs past the end of the quarter circle: refused.
   CHECK_THROWS_WITH(
@@ -129,15 +143,20 @@ TEST_CASE("the height map does not depend on the number of threads", "[determini
 }
 
 TEST_CASE("Sa converges as the grid is refined", "[convergence]") {
-  // The paper's Z-map converges slowly and not monotonically at coarse grids (a 40 um grid cannot
-  // resolve 0.1 mm feed marks); from 20 um on, each halving must bring Sa closer to the finest.
+  // The paper's Z-map takes each node's height from the nearest edge point: first order in the
+  // grid. Its Sa error against the exact surface (tooth_passage at 1 um) must fall at least as
+  // h^0.74 with each halving from 20 um (measured: 0.111, 0.028, 0.015 um at 20, 10, 5 um).
   const std::string scene =
       paper_scene("plugin = 'convex_arc'\nradius = 50.0", 0.0, 0.3, 0.3, 0.02);
-  std::vector<double> sa;
+  const double exact =
+      run_scene(scene, {"region.spacing=0.001", "evaluator.plugin=tooth_passage"}).roughness.Sa;
+  std::vector<double> error;
   for (double h : {0.02, 0.01, 0.005})
-    sa.push_back(run_scene(scene, {"region.spacing=" + std::to_string(h)}).roughness.Sa);
-  const double d1 = std::abs(sa[1] - sa[0]), d2 = std::abs(sa[2] - sa[1]);
-  INFO("Sa (um) at 20, 10, 5 um: " << sa[0] * 1e3 << ", " << sa[1] * 1e3 << ", " << sa[2] * 1e3
-                                   << "; observed order " << std::log2(d1 / d2));
-  CHECK(d2 < d1);
+    error.push_back(
+        std::abs(run_scene(scene, {"region.spacing=" + std::to_string(h)}).roughness.Sa - exact));
+  INFO("Sa error (um) at 20, 10, 5 um: "
+       << error[0] * 1e3 << ", " << error[1] * 1e3 << ", " << error[2] * 1e3 << "; observed orders "
+       << std::log2(error[0] / error[1]) << ", " << std::log2(error[1] / error[2]));
+  CHECK(error[1] < 0.6 * error[0]);
+  CHECK(error[2] < 0.6 * error[1]);
 }

@@ -1,5 +1,5 @@
-// tooth_passage where the tool's axis passes over the nodes (lambda near 0), against the brute force
-// of support/brute_force.hpp at every node (no bound, no stopping rule).
+// tooth_passage where the tool's axis passes over the nodes (lambda near 0), against the brute
+// force of support/brute_force.hpp at every node (no bound, no stopping rule).
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <cmath>
@@ -43,7 +43,8 @@ Compared compare_walks(const std::string& scene, const std::vector<std::string>&
       const auto start = std::chrono::steady_clock::now();
       for (std::size_t j = 0; j < g.ny; ++j)
         for (std::size_t i = 0; i < g.nx; ++i)
-          expected.push_back(testing::brute_force_height(*tool_only.tool, *run.layout.path, g.x(i), g.y(j)));
+          expected.push_back(
+              testing::brute_force_height(*tool_only.tool, *run.layout.path, g.x(i), g.y(j)));
       out.brute_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       out.nodes = g.nx * g.ny;
       int k = 0;
