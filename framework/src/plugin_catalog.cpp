@@ -112,6 +112,10 @@ void PluginCatalog::load(const std::string& raw_path, std::size_t dir) {
     const bool named = fs::path(l.path).filename() == kFilePrefix + name + ".so";
     return std::make_pair(named ? 0 : 1, l.dir);
   };
+  auto shadow = [&](const std::string& name, const std::string& loser, const std::string& winner) {
+    shadowed_.push_back({name, loser, winner});
+    log_debug("model '" + name + "' from '" + loser + "' is shadowed by '" + winner + "'");
+  };
   std::vector<bool> keep(registrar.models().size(), true);
   for (std::size_t i = 0; i < registrar.models().size(); ++i) {
     const std::string& name = registrar.models()[i].name;
@@ -124,17 +128,13 @@ void PluginCatalog::load(const std::string& raw_path, std::size_t dir) {
                         "'; remove one library from the search path or rename the model");
     if (rank(*lib, name) < rank(other, name)) {
       // The loser's entry stays in entries_ (a caller may hold it); it is no longer found.
-      shadowed_.push_back({name, other.path, path});
+      shadow(name, other.path, path);
       by_name_.erase(it);
     } else {
-      shadowed_.push_back({name, path, other.path});
+      shadow(name, path, other.path);
       keep[i] = false;
     }
   }
-  for (const auto& s : shadowed_)
-    if (s.path == path || s.shadowed_by == path)
-      log_debug("model '" + s.name + "' from '" + s.path + "' is shadowed by '" + s.shadowed_by +
-                "'");
   for (std::size_t i = 0; i < registrar.models().size(); ++i) {
     if (!keep[i]) continue;
     auto entry = std::make_unique<ModelEntry>();
