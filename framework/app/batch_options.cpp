@@ -33,6 +33,8 @@ RunnerOptions runner_options(const BatchOptions& b) {
   r.jobs = b.jobs;
   r.threads = b.threads;
   for (const auto& p : b.scene.common.plugin_paths) r.extra_args.push_back("--plugin-path=" + p);
+  if (!b.scene.common.scene_plugin_paths_allowed())
+    r.extra_args.push_back("--no-scene-plugin-paths");
   for (const auto& s : b.scene.overrides) r.extra_args.push_back("--set=" + s);
   return r;
 }
@@ -43,7 +45,8 @@ void check_variant(const BatchOptions& b, const std::vector<std::string>& extra,
   for (const auto& o : b.scene.overrides) doc.apply_override(o);
   try {
     for (const auto& o : extra) doc.apply_override(o);
-    PluginCatalog catalog(search_path(b.scene.common, doc.plugin_paths()));
+    PluginCatalog catalog(
+        search_path(b.scene.common, doc.plugin_paths(b.scene.common.scene_plugin_paths_allowed())));
     doc.resolve(catalog, check_unused);
   } catch (const InputError& e) {
     throw InputError(SourceRef{"command line"}, origin, e.what());

@@ -1,5 +1,7 @@
 #include "cli.hpp"
 
+#include <cstdlib>
+
 #include "log.hpp"
 #include "topomill/error.hpp"
 
@@ -11,8 +13,17 @@ po::options_description common_options(Common& c) {
                   "extra plugin directory, searched first (repeatable, or colon-separated)")(
       "verbose,v", po::bool_switch(&c.verbose), "log more (where each model came from, ...)")(
       "quiet,q", po::bool_switch(&c.quiet), "log warnings and errors only")(
-      "help,h", po::bool_switch(&c.help), "show this help");
+      "help,h", po::bool_switch(&c.help), "show this help")(
+      "no-scene-plugin-paths", po::bool_switch(&c.no_scene_plugin_paths),
+      "refuse a scene that names plugin directories (for scenes you did not write; also "
+      "TOPOMILL_NO_SCENE_PLUGIN_PATHS=1)");
   return o;
+}
+
+bool Common::scene_plugin_paths_allowed() const {
+  const char* env = std::getenv("TOPOMILL_NO_SCENE_PLUGIN_PATHS");
+  const bool env_refuses = env && *env && std::string(env) != "0";
+  return !(no_scene_plugin_paths || env_refuses);
 }
 
 po::variables_map parse(const std::vector<std::string>& args, const po::options_description& opts,

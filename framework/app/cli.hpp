@@ -14,6 +14,10 @@ namespace po = boost::program_options;
 struct Common {
   std::vector<std::string> plugin_paths;
   bool verbose = false, quiet = false, help = false;
+  bool no_scene_plugin_paths = false;  // or TOPOMILL_NO_SCENE_PLUGIN_PATHS set (not "0")
+
+  // Whether a scene's plugin_paths may be used (see SceneDocument::plugin_paths).
+  bool scene_plugin_paths_allowed() const;
 };
 
 // --plugin-path, --verbose, --quiet, --help.

@@ -19,7 +19,8 @@ LoadedScene load_scene(const Args& args, const po::options_description& opts, Sc
 
   SceneDocument doc = SceneDocument::parse_file(so.scene_file);
   for (const auto& o : so.overrides) doc.apply_override(o);
-  out.catalog = std::make_unique<PluginCatalog>(search_path(so.common, doc.plugin_paths()));
+  out.catalog = std::make_unique<PluginCatalog>(
+      search_path(so.common, doc.plugin_paths(so.common.scene_plugin_paths_allowed())));
   out.scene = doc.resolve(*out.catalog, check_unused);
   return out;
 }

@@ -12,7 +12,12 @@ Schema scene_schema() {
 
 Schema cutting_schema() {
   Schema s;
-  s.add_number("spindle_speed", "Spindle speed ns").with_unit("rpm").above(0).is_required();
+  s.add_number("spindle_speed",
+               "Spindle speed ns (up to 1e6 rpm; the fastest spindles made turn 0.5e6)")
+      .with_unit("rpm")
+      .above(0)
+      .at_most(1e6)
+      .is_required();
   s.add_number("feed_per_tooth", "Feed per tooth fz").with_unit("mm").above(0).is_required();
   s.add_number("depth_of_cut", "Depth of cut ap, measured along the surface normal")
       .with_unit("mm")

@@ -1,11 +1,19 @@
 #include "topomill/error.hpp"
 
+#include <cstdio>
+
 namespace topomill {
 
 std::string SourceRef::str() const {
   if (file.empty()) return "<unknown>";
   if (line <= 0) return file;
   return file + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
+std::string format_number(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", value);
+  return buf;
 }
 
 namespace {

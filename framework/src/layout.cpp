@@ -52,14 +52,22 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
 
   if (ap > R)
     throw InputError(cut.where("depth_of_cut"), "cutting.depth_of_cut",
-                     "depth of cut " + std::to_string(ap) + " mm exceeds the ball radius " +
-                         std::to_string(R) + " mm: only the ball may cut");
+                     "depth of cut " + format_number(ap) + " mm exceeds the ball radius " +
+                         format_number(R) + " mm: only the ball may cut");
   const double r = surface->curvature_radius();
-  if (r < 0 && -r < R)
-    throw InputError(scene.slot("workpiece").where, "workpiece.radius",
-                     "a concave radius of " + std::to_string(-r) +
-                         " mm is smaller than the ball radius " + std::to_string(R) +
-                         " mm: the ball cannot follow it without gouging");
+  // The workpiece's radius is a key of its own plugin's table: point at it when it is there.
+  const SlotTable& work = scene.slot("workpiece");
+  const SourceRef radius_at = work.params.has("radius") ? work.params.where("radius") : work.where;
+  if (r < 0 && -r <= R)
+    throw InputError(radius_at, "workpiece.radius",
+                     "a concave radius of " + format_number(-r) +
+                         " mm is not larger than the ball radius " + format_number(R) +
+                         " mm: expected a radius above it (the ball cannot follow it without "
+                         "gouging)");
+  if (r > 0 && ap >= r)
+    throw InputError(cut.where("depth_of_cut"), "cutting.depth_of_cut",
+                     "depth of cut " + format_number(ap) + " mm reaches the convex radius " +
+                         format_number(r) + " mm: expected less (the cut would remove the arc)");
   if (h > std::min(size[0], size[1]) / 2)
     throw InputError(region.where("spacing"), "region.spacing",
                      "spacing is larger than half the patch: expected at least 3 nodes per side");
@@ -77,6 +85,17 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   const double s_c = arc_of(*surface, y_c);
   L.s_lo = s_c - size[1] / 2;
   L.s_hi = s_c + size[1] / 2;
+  // Checked before anything is laid out along the patch (found by the scene fuzzer: a patch of
+  // 2.6e6 mm on a 20 mm arc laid out millions of passes before the run-in check refused it).
+  const double arc_min = arc_of(*surface, surface->y_min());
+  const double arc_max = arc_of(*surface, surface->y_max());
+  if (L.s_lo <= arc_min || L.s_hi >= arc_max)
+    throw InputError(region.where("size"), "region.size",
+                     "the patch runs past the end of the workpiece surface (its arc spans " +
+                         format_number(arc_min) + " to " + format_number(arc_max) +
+                         " mm; the patch " + format_number(L.s_lo) + " to " +
+                         format_number(L.s_hi) +
+                         " mm): expected a smaller region.size or region.lambda");
   // The patch lies on the machined surface, ap below the uncut one along the normal: its ends
   // project to y = y_s - ap sin(lambda(y_s)), y_s the uncut surface point at the same arc position.
   const double span = size[1] + 1.0;
@@ -86,6 +105,12 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   };
   const double y_lo = cut_y(L.s_lo);
   const double y_hi = cut_y(L.s_hi);
+  if (!(y_hi > y_lo))  // a surface plugin whose y does not grow along its arc
+    throw InputError(work.where, "workpiece",
+                     "the patch's ends project to y = " + format_number(y_lo) + " and " +
+                         format_number(y_hi) +
+                         " mm: expected y to grow along the surface's arc (a defect of the "
+                         "surface model)");
 
   // Z-map grid: spacing h in X; in Y h cos(lambda), so that the resolution on the surface is about
   // h wherever the patch sits up to lambda = 60 deg. Steeper, the Y spacing stays h/2 (a height
@@ -132,7 +157,7 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   if (!(steps < kMaxPasses))
     throw InputError(region.where("size"), "region.size",
                      "the patch would need " + format_count(steps) + " passes at a step-over of " +
-                         std::to_string(ae) +
+                         format_number(ae) +
                          " mm: expected fewer than 1e7 (shrink region.size or raise "
                          "cutting.stepover)");
   std::vector<ToolPath::Pass> passes;

@@ -228,8 +228,8 @@ static void apply_effects(const Scene& scene, const Prepared& m, unsigned thread
   if (largest > m.tool->radius()) {
     const std::string table = m.dynamics ? "vibration" : m.deformations.front().first;
     throw InputError(scene.slot(table).where, table,
-                     "the path correction reaches " + std::to_string(largest) +
-                         " mm, more than the ball radius " + std::to_string(m.tool->radius()) +
+                     "the path correction reaches " + format_number(largest) +
+                         " mm, more than the ball radius " + format_number(m.tool->radius()) +
                          " mm: the effects' parameters (a mode's stiffness, the overhang) are "
                          "outside the range the linear models describe");
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 
@@ -16,10 +17,25 @@ namespace {
 constexpr const char* kEntrySymbol = "topomill_plugin_entry_v1";
 constexpr const char* kFilePrefix = "libtopomill_";
 
-bool is_library_file(const fs::path& p) {
-  return p.extension() == ".so" && p.filename().string().rfind("lib", 0) == 0;
+// The model a library file provides: NAME of libtopomill_NAME.so; empty for any other file.
+std::string model_of_file(const fs::path& p) {
+  const std::string f = p.filename().string();
+  const std::string suffix = ".so";
+  if (f.size() <= std::string(kFilePrefix).size() + suffix.size() || f.rfind(kFilePrefix, 0) != 0 ||
+      f.compare(f.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return {};
+  const std::string name = f.substr(std::string(kFilePrefix).size(),
+                                    f.size() - std::string(kFilePrefix).size() - suffix.size());
+  return is_model_name(name) ? name : std::string();
 }
 }  // namespace
+
+bool is_model_name(const std::string& name) {
+  if (name.empty() || name.size() > 128) return false;
+  for (const unsigned char c : name)
+    if (!(std::isalnum(c) || c == '_')) return false;
+  return true;
+}
 
 PluginLibrary::~PluginLibrary() = default;
 
@@ -99,6 +115,18 @@ void PluginCatalog::load(const std::string& raw_path, std::size_t dir) {
     refuse(path, std::string("registration failed: ") + e.what());
     return;
   }
+  // One model per library, named after its file: a scene's name then opens that file and no
+  // other, so a misspelt name runs no code that nothing named.
+  const std::string expected = model_of_file(path);
+  if (registrar.models().size() != 1 || registrar.models()[0].name != expected) {
+    std::string names;
+    for (const auto& info : registrar.models())
+      names += (names.empty() ? "'" : ", '") + info.name + "'";
+    refuse(path, "registers " + (names.empty() ? std::string("no model") : names) +
+                     ": expected exactly one model, named after its file ('" + expected + "' for " +
+                     fs::path(path).filename().string() + ")");
+    return;
+  }
 
   auto lib = std::make_shared<PluginLibrary>();
   lib->path = path;
@@ -107,11 +135,6 @@ void PluginCatalog::load(const std::string& raw_path, std::size_t dir) {
   lib->handle = handle;
   lib->dir = dir;
 
-  // Which of two libraries provides `name` (the rule in the header): lower rank wins.
-  auto rank = [](const PluginLibrary& l, const std::string& name) {
-    const bool named = fs::path(l.path).filename() == kFilePrefix + name + ".so";
-    return std::make_pair(named ? 0 : 1, l.dir);
-  };
   auto shadow = [&](const std::string& name, const std::string& loser, const std::string& winner) {
     shadowed_.push_back({name, loser, winner});
     log_debug("model '" + name + "' from '" + loser + "' is shadowed by '" + winner + "'");
@@ -122,11 +145,7 @@ void PluginCatalog::load(const std::string& raw_path, std::size_t dir) {
     auto it = by_name_.find(name);
     if (it == by_name_.end()) continue;
     const PluginLibrary& other = *it->second->library;
-    if (other.dir == dir)
-      throw PluginError("model '" + name + "' is registered twice: by '" + other.path +
-                        "' and by '" + path +
-                        "'; remove one library from the search path or rename the model");
-    if (rank(*lib, name) < rank(other, name)) {
+    if (dir < other.dir) {  // the earlier directory wins (the rule in the header)
       // The loser's entry stays in entries_ (a caller may hold it); it is no longer found.
       shadow(name, other.path, path);
       by_name_.erase(it);
@@ -150,6 +169,7 @@ void PluginCatalog::load(const std::string& raw_path, std::size_t dir) {
 }
 
 const ModelEntry* PluginCatalog::find(const std::string& name) {
+  if (!is_model_name(name)) return nullptr;  // never joined into a path
   auto known = by_name_.find(name);
   if (known != by_name_.end()) return known->second;
   for (std::size_t d = 0; d < dirs_.size(); ++d) {
@@ -164,9 +184,21 @@ const ModelEntry* PluginCatalog::find(const std::string& name) {
       throw PluginError("model '" + name + "' cannot be loaded: library '" + refused_.back().path +
                         "' " + refused_.back().reason);
   }
-  load_all();
-  known = by_name_.find(name);
-  return known == by_name_.end() ? nullptr : known->second;
+  return nullptr;
+}
+
+std::vector<std::string> PluginCatalog::available_names() const {
+  std::vector<std::string> out;
+  for (const Dir& dir : dirs_) {
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir.path, ec)) {
+      const std::string name = model_of_file(e.path());
+      if (!name.empty()) out.push_back(name);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
 }
 
 void PluginCatalog::load_all() {
@@ -181,8 +213,8 @@ void PluginCatalog::load_all() {
     }
     std::vector<fs::path> files;
     for (const auto& e : fs::directory_iterator(dir.path, ec))
-      if (e.is_regular_file() && is_library_file(e.path())) files.push_back(e.path());
-    std::sort(files.begin(), files.end());  // a stable order makes duplicate errors reproducible
+      if (e.is_regular_file() && !model_of_file(e.path()).empty()) files.push_back(e.path());
+    std::sort(files.begin(), files.end());  // a stable order makes listings reproducible
     for (const auto& f : files) load(f.string(), d);
   }
 }

@@ -1,15 +1,14 @@
 // Finds, loads and checks plugin libraries, and makes models from them.
 //
-// Libraries are opened lazily: the model NAME is first looked for in a file named
-// libtopomill_NAME.so in each search directory (the convention every built-in plugin follows), so a
-// run opens only the libraries its scene names. Only when that fails, or when a full listing is
-// asked for, is every library on the search path opened.
+// A library provides exactly one model, named after its file: libtopomill_NAME.so registers NAME
+// (gz-plugin's one hook per library). A scene's model NAME therefore opens libtopomill_NAME.so in
+// the first search directory that has it, and no other library: a misspelt name runs no code.
+// Only a full listing (`plugins`, `describe`) opens every libtopomill_*.so on the search path.
+// Model names are identifiers (letters, digits, underscore), never joined into a path otherwise.
 //
-// One rule decides which library provides a model, whichever way it was found (so `run`, `check`
-// and `plugins` agree): a library named after the model (libtopomill_NAME.so) before one that is
-// not, then the earlier directory of the search path. The loser is "shadowed": listed by
-// `topomill plugins`, never an error. Two libraries of one directory registering one name are an
-// error (neither is more deliberate than the other).
+// A library registering anything else is refused (listed, never an error by itself). The same
+// name in two directories: the earlier directory wins, whichever way it was found (so `run`,
+// `check` and `plugins` agree); the loser is "shadowed", listed by `topomill plugins`.
 #pragma once
 
 #include <map>
@@ -24,6 +23,9 @@ class shared_library;
 }
 
 namespace topomill {
+
+// Letters, digits and underscores, 1 to 128 of them: what a model name may be.
+bool is_model_name(const std::string& name);
 
 struct PluginLibrary {
   std::string path;
@@ -70,8 +72,12 @@ class PluginCatalog {
 
   const std::vector<Dir>& search_path() const { return dirs_; }
 
-  // The model `name`, if any library on the search path registers it (for any slot).
+  // The model `name` from libtopomill_NAME.so, opened from the first directory that has it;
+  // nullptr when no directory has it (or the name is not an identifier). A library that is
+  // there but refused is a PluginError naming it.
   const ModelEntry* find(const std::string& name);
+  // Model names the search path offers, from file names alone (no library is opened).
+  std::vector<std::string> available_names() const;
   // Opens every library on the search path.
   void load_all();
   // Models of one slot known so far, sorted by name.

@@ -1,6 +1,7 @@
 #include "scene.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -39,14 +40,19 @@ const std::set<std::string> kRequiredCore = {"cutting", "region"};
 
 std::string number_text(double x);
 
-// "Known tool geometry models", "Known force models".
-std::string known_title(Slot slot) {
-  std::string name = slot_name(slot);
-  const std::string suffix = " model";
-  if (name.size() > suffix.size() &&
-      name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
-    return "Known " + name + "s";
-  return "Known " + name + " models";
+// A user's text in a message: control characters (a NUL would cut the message) as \xNN.
+std::string printable(const std::string& text) {
+  std::string out;
+  for (const unsigned char c : text) {
+    if (c >= 0x20 && c != 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    }
+  }
+  return out;
 }
 
 std::string node_kind(const toml::node& n) {
@@ -204,7 +210,12 @@ Value convert(const toml::node& node, const ParamSpec& spec, const std::string& 
         if (!ok)
           throw InputError(loc.at(path, e.source()), path + "[" + std::to_string(i) + "]",
                            "expected " + spec.expectation() + ", got " + node_kind(e));
-        out.emplace_back(*e.as_string());
+        const std::string v(*e.as_string());
+        // A choice is a set member: twice would mean one output written twice (issue 18).
+        if (!spec.choices.empty() && std::find(out.begin(), out.end(), v) != out.end())
+          throw InputError(loc.at(path, e.source()), path + "[" + std::to_string(i) + "]",
+                           "'" + v + "' is listed twice: expected each choice at most once");
+        out.push_back(v);
       }
       return out;
     }
@@ -315,11 +326,16 @@ void SceneDocument::apply_override(const std::string& assignment) {
   overrides_[path] = origin;
 }
 
-std::vector<std::string> SceneDocument::plugin_paths() const {
+std::vector<std::string> SceneDocument::plugin_paths(bool allowed) const {
   std::vector<std::string> out;
   const toml::node* node = root_->get("plugin_paths");
   if (!node) return out;
   Locator loc(file_, overrides_);
+  if (!allowed)
+    throw InputError(loc.at("plugin_paths", node->source()), "plugin_paths",
+                     "this scene names plugin directories, and scene plugin paths are refused "
+                     "(--no-scene-plugin-paths or TOPOMILL_NO_SCENE_PLUGIN_PATHS): a plugin "
+                     "runs code; pass trusted directories with --plugin-path instead");
   const toml::array* a = node->as_array();
   if (!a)
     throw InputError(loc.at("plugin_paths", node->source()), "plugin_paths",
@@ -418,6 +434,11 @@ Scene SceneDocument::resolve(PluginCatalog& catalog, bool check_unused) const {
                            " model, got " + node_kind(*pn));
     if (pn) {
       st.plugin = std::string(*pn->as_string());
+      if (!is_model_name(st.plugin))  // before any library is looked for
+        throw InputError(plugin_where, plugin_key,
+                         "'" + printable(st.plugin) +
+                             "' is not a model name: expected letters, digits and underscores "
+                             "(up to 128), as in libtopomill_NAME.so");
     } else if (spec.default_plugin) {
       st.plugin = spec.default_plugin;
     } else {
@@ -432,14 +453,21 @@ Scene SceneDocument::resolve(PluginCatalog& catalog, bool check_unused) const {
     } catch (const PluginError& e) {
       throw InputError(plugin_where, plugin_key, e.what());
     }
-    if (!entry || entry->info.slot != spec.slot) {
-      catalog.load_all();
-      std::vector<std::string> known = catalog.names(spec.slot);
-      std::string msg = std::string("unknown ") + slot_name(spec.slot) + " '" + st.plugin + "'";
-      if (entry) msg += " ('" + st.plugin + "' is a " + slot_name(entry->info.slot) + ")";
+    if (entry && entry->info.slot != spec.slot)
+      throw InputError(plugin_where, plugin_key,
+                       std::string("unknown ") + slot_name(spec.slot) + " '" + st.plugin + "' ('" +
+                           st.plugin + "' is a " + slot_name(entry->info.slot) +
+                           "; `topomill plugins` lists the models per slot)");
+    if (!entry) {
+      // Listed from file names: a misspelt name opens no library (what each one is, per slot,
+      // is `topomill plugins`, which opens them all).
+      const std::vector<std::string> known = catalog.available_names();
       throw InputError(
           plugin_where, plugin_key,
-          with_candidates(msg, entry ? std::string() : st.plugin, known, known_title(spec.slot)));
+          with_candidates(std::string("unknown ") + slot_name(spec.slot) + " '" + st.plugin + "'",
+                          st.plugin, known,
+                          "Models on the plugin search path (`topomill plugins` "
+                          "lists them per slot)"));
     }
     st.model = entry;
     static const toml::table empty;

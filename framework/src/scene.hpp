@@ -58,8 +58,10 @@ class SceneDocument {
 
   // `key.path=value`; the value is read as TOML, or taken as a string when it is not TOML.
   void apply_override(const std::string& assignment);
-  // The scene's plugin_paths, relative to the scene file's directory.
-  std::vector<std::string> plugin_paths() const;
+  // The scene's plugin_paths, relative to the scene file's directory. A scene naming plugin
+  // directories runs code from them (as a Makefile does); with `allowed` false (an untrusted
+  // scene: --no-scene-plugin-paths or TOPOMILL_NO_SCENE_PLUGIN_PATHS) that is refused, exit 2.
+  std::vector<std::string> plugin_paths(bool allowed = true) const;
   // Checks every key and resolves every model the run needs. With `check_unused`, also the
   // tables the run would skip (disabled effects, [force] without effects): that opens their
   // plugin libraries, which a run avoids.

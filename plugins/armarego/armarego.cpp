@@ -23,12 +23,36 @@ class Armarego : public ForceModel {
  public:
   static Schema schema() {
     Schema s;
-    s.add_number("Ktc", "Tangential cutting coefficient").with_unit("N/mm^2").with_default(1512.8);
-    s.add_number("Krc", "Radial cutting coefficient").with_unit("N/mm^2").with_default(656.8);
-    s.add_number("Kac", "Axial cutting coefficient").with_unit("N/mm^2").with_default(-1123.4);
-    s.add_number("Kte", "Tangential edge coefficient").with_unit("N/mm").with_default(198.5);
-    s.add_number("Kre", "Radial edge coefficient").with_unit("N/mm").with_default(110.1);
-    s.add_number("Kae", "Axial edge coefficient").with_unit("N/mm").with_default(-42.4);
+    s.add_number("Ktc", "Tangential cutting coefficient")
+        .with_unit("N/mm^2")
+        .at_least(-1e6)
+        .at_most(1e6)
+        .with_default(1512.8);
+    s.add_number("Krc", "Radial cutting coefficient")
+        .with_unit("N/mm^2")
+        .at_least(-1e6)
+        .at_most(1e6)
+        .with_default(656.8);
+    s.add_number("Kac", "Axial cutting coefficient")
+        .with_unit("N/mm^2")
+        .at_least(-1e6)
+        .at_most(1e6)
+        .with_default(-1123.4);
+    s.add_number("Kte", "Tangential edge coefficient")
+        .with_unit("N/mm")
+        .at_least(-1e5)
+        .at_most(1e5)
+        .with_default(198.5);
+    s.add_number("Kre", "Radial edge coefficient")
+        .with_unit("N/mm")
+        .at_least(-1e5)
+        .at_most(1e5)
+        .with_default(110.1);
+    s.add_number("Kae", "Axial edge coefficient")
+        .with_unit("N/mm")
+        .at_least(-1e5)
+        .at_most(1e5)
+        .with_default(-42.4);
     s.add_number("element_angle",
                  "Polar-angle size of an edge element; elements are fixed on the tool (a quarter "
                  "circle is divided into equal ones) and an element the CATW cuts counts in part")

@@ -47,7 +47,7 @@ class Cantilever : public Deformation {
                   const CutState& st) const override {
     const double R = tool.radius();
     if (overhang_ <= R)
-      throw ParamError("overhang", "the overhang must exceed the ball radius " + std::to_string(R) +
+      throw ParamError("overhang", "the overhang must exceed the ball radius " + format_number(R) +
                                        " mm: the ball has to stand out of the holder");
     const double de = ratio_ * 2 * R;
     const double ei = e_ * M_PI * std::pow(de, 4) / 64;

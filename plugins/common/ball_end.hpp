@@ -12,7 +12,11 @@ class BallEnd : public ToolGeometry {
  public:
   static Schema base_schema() {
     Schema s;
-    s.add_number("radius", "Ball radius R").with_unit("mm").above(0).is_required();
+    s.add_number("radius", "Ball radius R (up to 1 m: beyond, no tool)")
+        .with_unit("mm")
+        .above(0)
+        .at_most(1000)
+        .is_required();
     s.add_integer("teeth", "Number of teeth N, evenly spaced")
         .at_least(1)
         .at_most(64)

@@ -15,6 +15,7 @@ class ConcaveArc : public SurfaceShape {
     s.add_number("radius", "Curvature radius r of the cross-section; must exceed the ball radius")
         .with_unit("mm")
         .above(0)
+        .at_most(1e6)
         .is_required();
     return s;
   }

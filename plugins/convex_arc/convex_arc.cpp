@@ -14,6 +14,7 @@ class ConvexArc : public SurfaceShape {
     s.add_number("radius", "Curvature radius r of the cross-section (the paper does not give it)")
         .with_unit("mm")
         .above(0)
+        .at_most(1e6)
         .is_required();
     return s;
   }

@@ -28,9 +28,9 @@ class InclinedPlane : public SurfaceShape {
   double inclination(double) const override { return lambda_; }
   double y_at_inclination(double lambda) const override {
     if (std::abs(lambda - lambda_) > 1e-9)
-      throw ParamError("angle", "a plane inclined at " + std::to_string(lambda_ * 180 / M_PI) +
+      throw ParamError("angle", "a plane inclined at " + format_number(lambda_ * 180 / M_PI) +
                                     " deg has no point whose normal is at " +
-                                    std::to_string(lambda * 180 / M_PI) +
+                                    format_number(lambda * 180 / M_PI) +
                                     " deg: set region.lambda to the plane's angle");
     return 0.0;
   }

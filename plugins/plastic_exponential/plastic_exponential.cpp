@@ -24,7 +24,10 @@ class PlasticExponential : public Deformation {
         .with_unit("MPa")
         .above(0)
         .is_required();
-    s.add_number("hardening_exponent", "Hardening index n1").at_least(0).is_required();
+    s.add_number("hardening_exponent", "Hardening index n1 (Hollomon's n: 0 to 1 for metals)")
+        .at_least(0)
+        .at_most(1)
+        .is_required();
     s.add_number("plastic_depth", "Depth d of plastic deformation")
         .with_unit("mm")
         .above(0)
@@ -49,7 +52,7 @@ class PlasticExponential : public Deformation {
     const double denom = std::sqrt(3.0) * std::sin(phi_) * std::cos(phi_ - a0_);
     if (!(std::abs(denom) > 1e-12))
       throw ParamError("rake_angle", "J1 of Eq. 30 is infinite: cos(phi - rake) = 0 with phi = " +
-                                         std::to_string(phi_ * 180 / M_PI) + " deg");
+                                         format_number(phi_ * 180 / M_PI) + " deg");
     j1_ = std::cos(a0_) / denom;
   }
 

@@ -1,6 +1,9 @@
 // Deliberately broken plugins are refused with precise messages, and the program goes on.
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <fstream>
+#include <utility>
+#include <vector>
 #include "topomill/version.hpp"
 
 #include "plugin_catalog.hpp"
@@ -86,22 +89,63 @@ TEST_CASE("a registration that throws is refused", "[plugins]") {
   CHECK(contains(r.out, "registration failed: fixture: registration refuses"));
 }
 
-TEST_CASE("a model registered by two libraries is an error naming both", "[plugins]") {
-  const auto r = run_topomill("plugins -P '" + fixture_dir("duplicate") + "'");
+TEST_CASE("a library registering a model not named after its file is refused", "[plugins]") {
+  const auto r = run_topomill("plugins -P '" + fixture_dir("misnamed") + "'");
   CHECK_FALSE(r.crashed);
-  CHECK(r.exit_code == 2);
-  CHECK(contains(r.err, "model 'fixture_duplicate' is registered twice: by '" +
-                            fixture_dir("duplicate") +
-                            "/libtopomill_fixture_duplicate_a.so' and by '" +
-                            fixture_dir("duplicate") + "/libtopomill_fixture_duplicate_b.so'"));
+  CHECK(r.exit_code == 0);
+  CHECK(contains(r.out, fixture_dir("misnamed") +
+                            "/libtopomill_fixture_misnamed.so: registers 'fixture_other', "
+                            "'fixture_misnamed': expected exactly one model, named after its "
+                            "file ('fixture_misnamed' for libtopomill_fixture_misnamed.so)"));
+  CHECK_FALSE(contains(r.out, "  fixture_other"));
 }
 
-TEST_CASE("a library of one directory is also a duplicate when it is named after the model",
-          "[plugins]") {
-  // The same library under the conventional name beside the two above: still ambiguous.
-  const auto r = run_topomill("describe fixture_duplicate -P '" + fixture_dir("duplicate") + "'");
+// Issue 18, defect 12: a scene ran native code it never named.
+TEST_CASE("a scene's model name opens only the library of that name", "[plugins][trust]") {
+  const std::string mark = testing::temp_dir("loud_opened");
+  const std::string env = "TOPOMILL_FIXTURE_MARK='" + mark + "'";
+  // A misspelt name: refused from the file names alone, the library beside it never opened.
+  const auto misspelt = scene_with_workpiece("loud_misspelt", "fixture_lod", fixture_dir("loud"));
+  const auto r = run_topomill("check '" + misspelt + "'", env);
+  INFO(r.err);
   CHECK(r.exit_code == 2);
-  CHECK(contains(r.err, "is registered twice"));
+  CHECK(contains(r.err, "unknown surface shape 'fixture_lod'; did you mean 'fixture_loud'?"));
+  CHECK_FALSE(std::filesystem::exists(mark));
+  // A name that is not an identifier is refused before any path is formed from it.
+  const auto escape =
+      scene_with_workpiece("loud_escape", "../loud/libtopomill_fixture_loud", fixture_dir("good"));
+  const auto e = run_topomill("check '" + escape + "'", env);
+  CHECK(e.exit_code == 2);
+  CHECK(contains(e.err, "is not a model name: expected letters, digits and underscores"));
+  CHECK_FALSE(std::filesystem::exists(mark));
+  // The right name opens it.
+  const auto named = scene_with_workpiece("loud_named", "fixture_loud", fixture_dir("loud"));
+  CHECK(run_topomill("check '" + named + "'", env).exit_code == 0);
+  CHECK(std::filesystem::exists(mark));
+}
+
+TEST_CASE("scene plugin paths can be refused for scenes one did not write", "[plugins][trust]") {
+  const std::string mark = testing::temp_dir("loud_refused_opened");
+  const std::string env = "TOPOMILL_FIXTURE_MARK='" + mark + "'";
+  const auto scene = scene_with_workpiece("loud_untrusted", "fixture_loud", fixture_dir("loud"));
+  for (const auto& [args, extra_env] : std::vector<std::pair<std::string, std::string>>{
+           {"check '" + scene + "' --no-scene-plugin-paths", ""},
+           {"check '" + scene + "'", " TOPOMILL_NO_SCENE_PLUGIN_PATHS=1"},
+           {"run '" + scene + "' --no-scene-plugin-paths --out '" +
+                testing::temp_dir("loud_untrusted_out") + "/o'",
+            ""}}) {
+    const auto r = run_topomill(args, env + extra_env);
+    INFO(args << extra_env << ": " << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK(contains(r.err, scene + ":1:16: error: key 'plugin_paths': this scene names plugin "
+                                  "directories, and scene plugin paths are refused"));
+    CHECK_FALSE(std::filesystem::exists(mark));
+  }
+  // The same directory passed by the user is trusted.
+  const auto trusted = run_topomill(
+      "check '" + scene + "' --no-scene-plugin-paths -P '" + fixture_dir("loud") + "'", env);
+  CHECK(trusted.exit_code == 2);  // the scene still names its paths: refused all the same
+  CHECK(run_topomill("describe fixture_loud -P '" + fixture_dir("loud") + "'", env).exit_code == 0);
 }
 
 TEST_CASE("a plugin named like a built-in shadows it in run, check and plugins alike",

@@ -19,6 +19,9 @@ struct TOPOMILL_API SourceRef {
   std::string str() const;
 };
 
+// A number for a message: six significant digits ("1e+300", not std::to_string's 300 digits).
+TOPOMILL_API std::string format_number(double value);
+
 // Bad input: a scene, an option or a file. The program exits with code 2.
 class TOPOMILL_API InputError : public std::runtime_error {
  public:
