@@ -182,11 +182,21 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
     }
     y_first = passes.front().y_start, y_last = passes.back().y_start;
   }
-  if (y_first <= surface->y_min() || y_last >= surface->y_max())
+  // Evaluators may look two revolutions beyond a pass's ends (tooth_passage tabulates the centre
+  // there), and the path is only defined over the surface: that reach must lie on it too. (With
+  // 49 teeth on the paper's arc it did not: the centre was NaN there and tooth_passage's table
+  // halved its step until memory ran out.)
+  const double reach = across ? 0.0 : 2 * fz * teeth;
+  if (y_first - reach <= surface->y_min() || y_last + reach >= surface->y_max())
     throw InputError(
         region.where("lambda"), "region.lambda",
         "the patch at this lambda, with the tool's run-in and run-out, reaches past "
-        "the end of the workpiece surface; choose a smaller lambda or a larger radius");
+        "the end of the workpiece surface (the tool path runs " +
+            format_number(run + reach) + " mm beyond each end of the patch, at " +
+            format_number(fz * teeth) +
+            " mm per revolution: three revolutions of run-in or run-out, the depth, and two an "
+            "evaluator may look beyond them); choose a smaller lambda, a larger radius, or "
+            "fewer teeth or a smaller feed");
   for (double y : {y_first, y_lo, y_c, y_hi, y_last})
     L.lambda_max = std::max(L.lambda_max, std::abs(surface->inclination(y)));
 

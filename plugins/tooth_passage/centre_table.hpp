@@ -24,9 +24,13 @@ class CentreTable {
       : path_(&path), pass_(pass), correction_(&path.correction_samples(pass)) {
     index_correction();
     double dt = std::max((t_hi - t_lo) / 16, 1e-9);
-    for (int attempt = 0; attempt < 40; ++attempt, dt /= 2) {
+    // At most 2^22 knots (200 MB): a smooth path needs far fewer, and a path that is not (NaN
+    // off the surface's end) must not take all memory on the way to the refusal.
+    for (int attempt = 0; attempt < 40 && (t_hi - t_lo) / dt < 4e6; ++attempt, dt /= 2) {
       build(t_lo, t_hi, dt);
-      if (max_midpoint_error() <= tolerance) return;
+      const double error = max_midpoint_error();
+      if (error <= tolerance) return;
+      if (!std::isfinite(error)) break;
     }
     throw std::runtime_error("tooth_passage: the tool path is not smooth enough to tabulate");
   }
