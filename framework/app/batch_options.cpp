@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include "distribution.hpp"
+
 namespace topomill::cli {
 
 void add_batch_options(po::options_description& opts, BatchOptions& b) {
@@ -37,6 +39,15 @@ RunnerOptions runner_options(const BatchOptions& b) {
     r.extra_args.push_back("--no-scene-plugin-paths");
   for (const auto& s : b.scene.overrides) r.extra_args.push_back("--set=" + s);
   return r;
+}
+
+std::unique_ptr<OutputLock> lock_batch_output(const BatchOptions& b,
+                                              const std::vector<Case>& cases) {
+  check_case_ids(cases);
+  if (Distribution::instance().rank() != 0) return nullptr;
+  auto lock = std::make_unique<OutputLock>(b.out_dir, SourceRef{"command line"}, "--out", false);
+  lock->keep();
+  return lock;
 }
 
 void check_variant(const BatchOptions& b, const std::vector<std::string>& extra,

@@ -2,7 +2,10 @@
 // --out, --jobs and --threads, and checking a variant's overrides before any case runs.
 #pragma once
 
+#include <memory>
+
 #include "case_runner.hpp"
+#include "io/output_lock.hpp"
 #include "scene_options.hpp"
 
 namespace topomill::cli {
@@ -22,6 +25,12 @@ LoadedScene load_batch(const Args& args, const po::options_description& opts, Ba
 
 // Runner options: every case gets the base --set overrides and the plugin search path.
 RunnerOptions runner_options(const BatchOptions& b);
+
+// The batch's output directory, locked for the whole command by its first rank (the others
+// write only into their cases, each locked by its own run): null on the other ranks.
+// The cases are checked first: a refused request leaves no directory behind.
+std::unique_ptr<OutputLock> lock_batch_output(const BatchOptions& b,
+                                              const std::vector<Case>& cases);
 
 // Resolves the scene with its base overrides plus `extra`; an InputError names `origin` (the
 // option that asked for the variant) and the value.

@@ -65,6 +65,8 @@ bool already_done(const fs::path& dir, const std::vector<std::string>& args,
   // So does other code: a rebuilt program, core or plugin library (by their bytes, not times).
   try {
     const json j = json::parse(slurp(summary));
+    for (const auto& f : j.at("files"))  // a case whose files went missing is not done
+      if (!fs::is_regular_file(dir / f.get<std::string>(), ec)) return false;
     std::vector<std::string> libraries;
     for (const auto& [slot, entry] : j.at("plugins").items())
       libraries.push_back(entry.at("library").get<std::string>());
@@ -147,15 +149,19 @@ std::string case_id(const std::string& text) {
   return id;
 }
 
-std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOptions& o) {
-  const Distribution& mpi = Distribution::instance();
-  const fs::path root = fs::path(o.out_dir) / "cases";
+void check_case_ids(const std::vector<Case>& cases) {
   std::set<std::string> ids;
   for (const auto& c : cases)
     if (!ids.insert(c.id).second)
       throw InputError(
           SourceRef{"command line"}, "--vary/--swap/--spacing",
           "two cases would share the directory '" + c.id + "': a value is given twice");
+}
+
+std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOptions& o) {
+  const Distribution& mpi = Distribution::instance();
+  const fs::path root = fs::path(o.out_dir) / "cases";
+  check_case_ids(cases);
   fs::create_directories(root);
 
   std::vector<std::size_t> mine;
@@ -199,15 +205,17 @@ std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOp
 
   while (next < mine.size() || !running.empty()) {
     if (stop_flag().load()) {
-      for (const auto& [pid, i] : running) kill(pid, SIGINT);
+      // The same signal to every running case (each in a process group of its own, which a
+      // terminal's Ctrl-C, a `timeout` or a scheduler's SIGTERM to this process do not reach).
+      for (const auto& [pid, i] : running) kill(pid, stop_signal());
       while (!running.empty()) {
         int status = 0;
         const pid_t pid = waitpid(-1, &status, 0);
         if (pid > 0) running.erase(pid);
       }
-      throw Interrupted(
-          "interrupted (SIGINT): the running cases were stopped and wrote nothing; the finished "
-          "ones are kept: rerun the same command to go on");
+      throw Interrupted("interrupted (" + signal_name(stop_signal()) +
+                        "): the running cases were stopped and wrote nothing; the finished "
+                        "ones are kept: rerun the same command to go on");
     }
     if (next < mine.size() && running.size() < std::max(1u, o.jobs)) {
       const Case& c = cases[mine[next++]];
@@ -221,7 +229,9 @@ std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOp
         continue;
       }
       write_atomically(args_file(dir).string(), [&](std::ostream& out) { out << joined(args); });
-      // Each case in a process group of its own: a Ctrl-C reaches the sweep, which stops them.
+      // Each case in a process group of its own: a Ctrl-C reaches the sweep, which stops them;
+      // should the sweep die without doing so, the case is told (main.cpp).
+      setenv("TOPOMILL_STOP_WITH_PARENT", std::to_string(getpid()).c_str(), 1);
       running[spawn_logged("/proc/self/exe", args, log_file(dir).string(), true)] = mine[next - 1];
       continue;
     }

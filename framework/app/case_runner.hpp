@@ -44,6 +44,9 @@ struct RunnerOptions {
 // Runs (or resumes) the cases with index i where i % ranks == rank, and returns the results of
 // all cases: gathered on rank 0 (other ranks get only their own). Throws Interrupted after
 // SIGINT, once the running cases have stopped.
+// Refuses two cases that would share a directory (a value given twice).
+void check_case_ids(const std::vector<Case>& cases);
+
 std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOptions& options);
 
 // A directory name from free text: letters, digits and ._=- kept, the rest '_'.

@@ -118,6 +118,7 @@ int cmd_ablate(const Args& args) {
     std::cerr << "topomill: the scene enables no effect and --swap names no model: the "
                  "ablation has the full model only\n";
 
+  const auto lock = lock_batch_output(b, cases);
   const std::vector<CaseResult> results = run_cases(cases, runner_options(b));
   if (Distribution::instance().rank() != 0) return 0;
 

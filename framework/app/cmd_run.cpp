@@ -8,6 +8,7 @@
 #include "cli.hpp"
 #include "commands.hpp"
 #include "interrupt.hpp"
+#include "io/output_lock.hpp"
 #include "io/run_outputs.hpp"
 #include "log.hpp"
 #include "pipeline.hpp"
@@ -19,13 +20,16 @@ int cmd_run(const Args& args) {
   SceneOptions so;
   std::string out_dir;
   unsigned threads = 1;
+  bool wait = false;
   po::options_description opts(
       "topomill run SCENE [--out DIR] [--set key=value ...] [--threads N]: simulate a scene and "
       "write summary.json, height maps and a heat map");
   opts.add_options()("out,o", po::value(&out_dir),
                      "output directory (default: [output] dir, "
                      "else out/<scene name>)")("threads,t", po::value(&threads)->default_value(1),
-                                               "worker threads for the evaluator");
+                                               "worker threads for the evaluator")(
+      "wait", po::bool_switch(&wait),
+      "if another run is writing into the output directory, wait for it (default: refuse)");
   add_scene_options(opts, so);
   const auto started = std::chrono::steady_clock::now();
   LoadedScene loaded = load_scene(args, opts, so, /*check_unused=*/false);
@@ -36,9 +40,20 @@ int cmd_run(const Args& args) {
   if (threads < 1 || threads > 256)
     throw InputError(SourceRef{"command line"}, "--threads", "expected 1 to 256 threads");
   const Scene& scene = *loaded.scene;
-  if (out_dir.empty()) out_dir = scene.table("output").string("dir");
-  if (out_dir.empty())
+  // Where the directory came from, for messages: --out, the scene's [output] dir, or neither.
+  SourceRef out_where{"command line"};
+  std::string out_key = "--out";
+  if (out_dir.empty()) {
+    const Params& output = scene.table("output");
+    out_dir = output.string("dir");
+    out_where = output.where("dir"), out_key = "output.dir";
+  }
+  if (out_dir.empty()) {
     out_dir = (std::filesystem::path("out") / std::filesystem::path(scene.file).stem()).string();
+    out_where = SourceRef{"command line"}, out_key = "--out";
+  }
+  // One writer per directory for the whole run, taken before the work (issue 18).
+  OutputLock lock(out_dir, out_where, out_key, wait);
 
   RunOptions options;
   options.threads = threads;
@@ -52,6 +67,7 @@ int cmd_run(const Args& args) {
   if (tty) std::fprintf(stderr, "\r%*s\r", 20, "");
   throw_if_interrupted();
 
+  lock.keep();
   RunSummary summary = write_run_outputs(scene, result, out_dir, started);
   std::cout << summary.text;
   return 0;

@@ -151,6 +151,7 @@ int cmd_study(const Args& args) {
         case_spacing.push_back(s);
       }
   }
+  const auto lock = lock_batch_output(b, cases);
   const std::vector<CaseResult> results = run_cases(cases, runner_options(b));
   if (Distribution::instance().rank() != 0) return 0;
 

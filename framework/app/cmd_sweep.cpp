@@ -147,6 +147,7 @@ int cmd_sweep(const Args& args) {
       check_variant(b, {varied.back().key + "=" + value}, "--vary " + varied.back().key);
   }
   const std::vector<Case> cases = cross_product(varied);
+  const auto lock = lock_batch_output(b, cases);
   const std::vector<CaseResult> results = run_cases(cases, runner_options(b));
   if (Distribution::instance().rank() != 0) return 0;
 

@@ -1,5 +1,11 @@
 // topomill: predicts the surface a ball-end mill leaves on a curved workpiece.
+#include <sys/prctl.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdlib>
 #include <iostream>
+#include <string>
 
 #include "commands.hpp"
 #include "interrupt.hpp"
@@ -30,8 +36,8 @@ void usage(std::ostream& os) {
   for (const auto& c : kCommands)
     os << "  " << c.name << std::string(10 - std::string(c.name).size(), ' ') << c.summary << "\n";
   os << "\n'topomill COMMAND --help' shows a command's options.\n"
-        "exit codes: 0 ok, 1 internal failure, 2 bad input (scene, option, file), 130 "
-        "interrupted\n";
+        "exit codes: 0 ok, 1 internal failure, 2 bad input (scene, option, file), 128 + the "
+        "signal when stopped by SIGINT (130), SIGHUP (129) or SIGTERM (143)\n";
 }
 
 }  // namespace
@@ -52,6 +58,12 @@ int main(int argc, char** argv) {
     return 0;
   }
   topomill::install_interrupt_handler();
+  // A case of a batch command stops with it, even when the batch is killed outright (SIGKILL):
+  // the batch names itself here, and the kernel sends SIGTERM when it dies.
+  if (const char* parent = std::getenv("TOPOMILL_STOP_WITH_PARENT")) {
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (std::to_string(getppid()) != parent) return 128 + SIGTERM;  // it died before prctl
+  }
   for (const auto& c : kCommands) {
     if (name != c.name) continue;
     try {
@@ -61,7 +73,7 @@ int main(int argc, char** argv) {
       return 2;
     } catch (const topomill::Interrupted& e) {
       std::cerr << e.what() << "\n";
-      return 130;  // the shell's convention for a SIGINT
+      return 128 + topomill::stop_signal();  // the shell's convention: 130 for SIGINT
     } catch (const topomill::PluginError& e) {
       std::cerr << "error: " << e.what() << "\n";
       return 1;

@@ -1,5 +1,7 @@
-// Ctrl-C: the first SIGINT asks the run to stop at the next check (between stages, between rows
-// of the evaluator) so that it ends with a clear message and writes nothing; a second one kills.
+// Stopping on request: SIGINT (Ctrl-C), SIGTERM (kill, timeout, batch schedulers) and SIGHUP (a
+// closed terminal) all ask the run to stop at the next check (between stages, between rows of
+// the evaluator, between output files) so that it ends with a clear message, writes nothing and
+// exits with 128 + the signal's number; the same signal a second time kills at once.
 #pragma once
 
 #include <atomic>
@@ -8,18 +10,23 @@
 
 namespace topomill {
 
-// Thrown at a check after SIGINT.
+// Thrown at a check after a stop request; names the signal.
 class Interrupted : public std::runtime_error {
  public:
   Interrupted();
   explicit Interrupted(const std::string& what) : std::runtime_error(what) {}
 };
 
-// Installs the SIGINT handler. Safe to call more than once.
+// Installs the handlers for SIGINT, SIGTERM and SIGHUP. Safe to call more than once.
 void install_interrupt_handler();
 
-// The flag the handler sets; EvaluationRequest::stop points at it.
+// The flag the handlers set; EvaluationRequest::stop points at it.
 const std::atomic<bool>& stop_flag();
+
+// The signal that asked to stop (SIGINT when none did: a stop raised by other means).
+int stop_signal();
+// "SIGINT", "SIGTERM", "SIGHUP".
+std::string signal_name(int signal);
 
 // Throws Interrupted if a stop was requested.
 void throw_if_interrupted();

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "catw.hpp"
+#include "interrupt.hpp"
 
 namespace topomill {
 
@@ -166,9 +167,11 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
     const long k_lo = static_cast<long>(std::floor(g.x0 / ae)) - 1;
     const long k_hi = static_cast<long>(std::ceil(-g.x0 / ae)) + 1;
     y_first = y_lo - run, y_last = y_hi + run;
-    for (long k = k_lo; k <= k_hi; ++k)
+    for (long k = k_lo; k <= k_hi; ++k) {
+      if ((k & 4095) == 0) throw_if_interrupted();  // up to 1e7 passes: seconds
       passes.push_back({static_cast<double>(k) * ae, y_first, (y_last - y_first) / vf,
                         start + static_cast<double>(k - k_lo) * shift});
+    }
   } else {
     // Passes step by the arc length ae along the surface, centred on the patch.
     const long k_lo = static_cast<long>(std::floor((L.s_lo - s_c) / ae)) - 1;
@@ -176,6 +179,7 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
     const double span_k = (static_cast<double>(k_hi - k_lo) + 2) * ae;
     const double x_first = g.x0 - run, x_last = -g.x0 + run;
     for (long k = k_lo; k <= k_hi; ++k) {
+      if ((k & 1023) == 0) throw_if_interrupted();  // up to 1e7 bisections: many seconds
       const double y = y_at_arc(*surface, s_c + static_cast<double>(k) * ae, y_c, span_k);
       passes.push_back(
           {x_first, y, (x_last - x_first) / vf, start + static_cast<double>(k - k_lo) * shift});

@@ -81,6 +81,7 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
       out.deformations.emplace_back(name, make<Deformation>(scene, catalog, name));
   out.layout = make_layout(scene, *out.tool, out.surface);
   check_memory(scene, out, threads, available_memory());
+  check_duration(scene, out, threads);
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include <limits>
 #include <sstream>
 
+#include "log.hpp"
 #include "topomill/cut_state.hpp"
 
 namespace topomill {
@@ -38,7 +39,19 @@ std::uint64_t parse_bytes(const std::string& text) {
   else if (!suffix.empty())
     throw std::invalid_argument(suffix);
   if (!(v > 0)) throw std::invalid_argument(text);
-  return static_cast<std::uint64_t>(v * scale);
+  // Beyond what 64 bits count (1e99 used to wrap around to 0 bytes): no limit at all.
+  const double bytes = v * scale;
+  return bytes < 1.8e19 ? static_cast<std::uint64_t>(bytes)
+                        : std::numeric_limits<std::uint64_t>::max();
+}
+
+// Where a "table.key" of the scene was set (a core table's or a model's), for messages.
+SourceRef where_of(const Scene& scene, const std::string& key) {
+  const auto dot = key.find('.');
+  const std::string table = key.substr(0, dot), name = key.substr(dot + 1);
+  if (scene.core.count(table)) return scene.table(table).where(name);
+  if (scene.slots.count(table)) return scene.slot(table).params.where(name);
+  return SourceRef{scene.file};
 }
 
 }  // namespace
@@ -91,12 +104,17 @@ MemoryEstimate estimate_memory(const Prepared& m, unsigned threads) {
   const Grid& g = m.layout.grid;
   const EvaluationRequest rq = evaluation_request(m, threads);
   const double nodes = static_cast<double>(g.nx) * static_cast<double>(g.ny);
-  const double grid =
-      nodes * kCoreBytesPerNode + static_cast<double>(m.evaluator->extra_memory(rq, g));
+  const EvaluationCost cost = m.evaluator->estimate_cost(rq, g);
   const double effects = static_cast<double>(effect_samples(m)) * kBytesPerSample;
-  constexpr double cap = 1e19;  // keeps absurd scenes (1e12 nodes) from overflowing
-  e.grid_bytes = static_cast<std::uint64_t>(std::min(grid, cap));
-  e.effect_bytes = static_cast<std::uint64_t>(std::min(effects, cap));
+  // Capped (and NaN taken as the cap) so that absurd scenes (1e12 nodes) do not overflow.
+  auto bytes = [](double b) {
+    constexpr double cap = 1e18;
+    return static_cast<std::uint64_t>(b < cap ? std::max(b, 0.0) : cap);
+  };
+  e.grid_bytes = bytes(nodes * kCoreBytesPerNode);
+  e.evaluator_bytes = bytes(cost.bytes);
+  e.evaluator_key = cost.bytes_key;
+  e.effect_bytes = bytes(effects);
   return e;
 }
 
@@ -116,13 +134,22 @@ void check_memory(const Scene& scene, const Prepared& m, unsigned threads,
   // Leave a tenth for the program, the libraries and the allocator.
   if (static_cast<double>(e.total()) <= 0.9 * static_cast<double>(available)) return;
   const Grid& g = m.layout.grid;
+  const std::string evaluator = scene.slot("evaluator").plugin;
   std::ostringstream os;
   os << "the run would need about " << format_bytes(static_cast<double>(e.total())) << " (" << g.nx
      << " x " << g.ny << " nodes: " << format_bytes(static_cast<double>(e.grid_bytes)) << "; "
+     << evaluator << "'s own: " << format_bytes(static_cast<double>(e.evaluator_bytes)) << "; "
      << effect_samples(m)
      << " force/dynamics samples: " << format_bytes(static_cast<double>(e.effect_bytes))
      << "), and " << format_bytes(static_cast<double>(available)) << " are available: ";
-  if (e.grid_bytes >= e.effect_bytes) {
+  // The largest part names the key to turn.
+  if (e.evaluator_bytes > e.grid_bytes && e.evaluator_bytes >= e.effect_bytes &&
+      !e.evaluator_key.empty() && e.evaluator_key != "region.spacing") {
+    os << "raise " << e.evaluator_key << " (what " << evaluator
+       << "'s memory grows with) or shrink region.size";
+    throw InputError(where_of(scene, e.evaluator_key), e.evaluator_key, os.str());
+  }
+  if (e.grid_bytes + e.evaluator_bytes >= e.effect_bytes) {
     os << "raise region.spacing (memory grows as 1/spacing^2) or shrink region.size";
     if (threads > 1) os << ", or use fewer --threads";
     const Params& region = scene.table("region");
@@ -136,6 +163,31 @@ void check_memory(const Scene& scene, const Prepared& m, unsigned threads,
   os << "shrink region.size (fewer and shorter passes) or raise cutting.feed_per_tooth (the force "
         "is sampled 64 times per tooth passage)";
   throw InputError(scene.table("region").where("size"), "region.size", os.str());
+}
+
+void check_duration(const Scene& scene, const Prepared& m, unsigned threads) {
+  const EvaluationRequest rq = evaluation_request(m, threads);
+  const EvaluationCost cost = m.evaluator->estimate_cost(rq, m.layout.grid);
+  const double seconds = cost.seconds / std::max(1u, threads);
+  if (!(seconds > 60)) return;  // also: no estimate (0)
+  const std::string evaluator = scene.slot("evaluator").plugin;
+  std::ostringstream os;
+  os.precision(2);
+  if (seconds < 3600)
+    os << seconds / 60 << " min";
+  else if (seconds < 86400 * 3)
+    os << seconds / 3600 << " h";
+  else
+    os << seconds / 86400 << " days";
+  const std::string what = evaluator + " estimates this run at about " + os.str() + " on " +
+                           std::to_string(std::max(1u, threads)) + " thread(s), driven by " +
+                           cost.seconds_key;
+  if (seconds > 1e8 || !std::isfinite(seconds)) {
+    const std::string key = cost.seconds_key.substr(0, cost.seconds_key.find(' '));
+    throw InputError(where_of(scene, key), key,
+                     what + ": expected a run that ends within three years");
+  }
+  log_warning(what + " (an estimate, within a factor of a few)");
 }
 
 }  // namespace topomill

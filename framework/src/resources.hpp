@@ -21,15 +21,21 @@ std::uint64_t effect_samples(const Prepared& m);
 double effect_time_step(const Prepared& m);
 
 struct MemoryEstimate {
-  std::uint64_t grid_bytes = 0;    // height maps, outputs and the evaluator's own buffers
-  std::uint64_t effect_bytes = 0;  // cut states, forces and corrections on the time grid
-  std::uint64_t total() const { return grid_bytes + effect_bytes; }
+  std::uint64_t grid_bytes = 0;       // the core's height maps and outputs
+  std::uint64_t evaluator_bytes = 0;  // the evaluator's own buffers (EvaluationCost)
+  std::string evaluator_key;          // the scene key that drives them
+  std::uint64_t effect_bytes = 0;     // cut states, forces and corrections on the time grid
+  std::uint64_t total() const { return grid_bytes + evaluator_bytes + effect_bytes; }
 };
 
 MemoryEstimate estimate_memory(const Prepared& m, unsigned threads);
 
 // Throws InputError naming the key that dominates the estimate when it exceeds `available`.
 void check_memory(const Scene& scene, const Prepared& m, unsigned threads, std::uint64_t available);
+
+// Before a run the evaluator estimates to take over a minute, a warning with the estimate and the
+// key that drives it; one that would not end (over three years) is refused naming that key.
+void check_duration(const Scene& scene, const Prepared& m, unsigned threads);
 
 std::string format_bytes(double bytes);
 

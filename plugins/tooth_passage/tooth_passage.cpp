@@ -10,6 +10,7 @@
 // (node_walk.hpp). Rows are independent, so any split of rows over threads gives the same bits.
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <string>
 #include <thread>
 
@@ -45,6 +46,30 @@ class ToothPassage : public TopographyEvaluator {
         walk_(p.string("walk") == "row"    ? Walk::Row
               : p.string("walk") == "node" ? Walk::Node
                                            : Walk::Scan) {}
+
+  // Memory: the centre tables, about 4 KB a pass (measured: 30 MB for 8 600 passes at a 0.1 um
+  // step-over). Time, for the row walk on one thread (measured on the paper's lambda = 30 deg
+  // patch, 87 x 87 nodes): 1.5 us a node, plus 12 ns a node for each pass whose ball reaches
+  // it (2 R sin(kappa) / ae of them: 3.2 s at ae = 0.1 um). The feed adds little down to the
+  // schema's 1 nm (0.06 s at fz = 1e-8 mm). The node and scan walks are slower (not estimated).
+  EvaluationCost estimate_cost(const EvaluationRequest& rq, const Grid& g) const override {
+    EvaluationCost c;
+    const ToolPath& path = *rq.path;
+    c.bytes = 4096.0 * static_cast<double>(path.passes());
+    c.bytes_key = "cutting.stepover";
+    if (walk_ != Walk::Row) return c;
+    const double reach = 2 * rq.tool->radius() * std::sin(std::min(rq.kappa, M_PI / 2));
+    double ae = 0;  // the step between the first two passes, along the step direction
+    if (path.passes() > 1)
+      ae = path.feed_axis() == ToolPath::FeedAxis::Y
+               ? std::abs(path.pass(1).x - path.pass(0).x)
+               : std::abs(path.pass(1).y_start - path.pass(0).y_start);
+    const double node = 1.5e-6;
+    const double passes = ae > 0 ? 12e-9 * reach / ae : 0;
+    c.seconds = static_cast<double>(g.nx) * static_cast<double>(g.ny) * (node + passes);
+    c.seconds_key = node >= passes ? "region.spacing" : "cutting.stepover";
+    return c;
+  }
 
   void evaluate(const EvaluationRequest& rq, HeightMap& map, WorkCounts& counts) const override {
     const PassageSetup setup(rq, margin_, iterations_);

@@ -118,6 +118,39 @@ TEST_CASE("sweep: an interrupted sweep stops promptly and a rerun finishes it", 
   CHECK(read_csv_rows(out + "/sweep.csv").size() == 5);
 }
 
+TEST_CASE("SIGTERM and SIGHUP to a batch command stop its running cases too", "[batch][kill]") {
+  // Issue 18: the cases (process groups of their own) outlived a terminated sweep and kept
+  // writing. Each running case holds its directory's lock file, which names its pid.
+  for (const int signal : {SIGTERM, SIGHUP}) {
+    DYNAMIC_SECTION("signal " << signal) {
+      const std::string out = testing::temp_dir("sweep_terminated");
+      const std::string log = testing::temp_dir("sweep_terminated.log");
+      const int pid = testing::spawn_topomill({"sweep", "configs/paper/lambda30.toml", "--vary",
+                                               "region.lambda=20,30", "--jobs", "2", "--out", out},
+                                              log);
+      std::vector<int> cases;
+      const auto started = std::chrono::steady_clock::now();
+      while (cases.size() < 2 &&
+             std::chrono::steady_clock::now() - started < std::chrono::seconds(20)) {
+        cases.clear();
+        for (const char* id : {"region.lambda=20", "region.lambda=30"}) {
+          const std::string holder = testing::read_file(out + "/cases/" + id + "/.lock");
+          if (!holder.empty()) cases.push_back(std::stoi(holder));
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
+      REQUIRE(cases.size() == 2);
+      kill(pid, signal);
+      const int status = testing::wait_for(pid);
+      INFO(testing::read_file(log));
+      CHECK(WIFEXITED(status));
+      CHECK(WEXITSTATUS(status) == 128 + signal);
+      for (const int c : cases) CHECK(kill(c, 0) != 0);  // gone, not reparented and running
+      CHECK_FALSE(fs::exists(out + "/sweep.csv"));
+    }
+  }
+}
+
 TEST_CASE("sweep and ablate refuse bad requests before running anything", "[batch][errors]") {
   const std::string out = testing::temp_dir("refused");
   auto r = testing::run_topomill(

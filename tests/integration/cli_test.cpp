@@ -114,13 +114,27 @@ TEST_CASE("measure on run's x3p output gives the run's own parameters", "[cli][m
 TEST_CASE("a run that would not fit in memory is refused before any work, naming the key",
           "[cli][errors][resources]") {
   const std::string out = testing::temp_dir("memory");
-  // The grid dominates: 16 x 16 nodes and the Z-map's time table do not fit in 1 MB.
+  // The grid dominates: 16 x 16 nodes and the Z-map's maps do not fit in 10 KiB.
   auto r = testing::run_topomill("run configs/examples/quick.toml -q --out '" + out + "'",
-                                 "TOPOMILL_MEMORY_LIMIT=1M");
+                                 "TOPOMILL_MEMORY_LIMIT=10K");
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("configs/examples/quick.toml:25:11: error: key 'region.spacing': the run "
                    "would need about") != std::string::npos);
-  CHECK(r.err.find("and 1 MiB are available") != std::string::npos);
+  CHECK(r.err.find("and 0.00977 MiB are available") != std::string::npos);
+  // The evaluator's own tables dominate: tooth_passage's 30 000 passes at a 10 nm step-over.
+  r = testing::run_topomill(
+      "run configs/examples/quick.toml -q --set evaluator.plugin=tooth_passage "
+      "--set cutting.stepover=1e-5 --out '" +
+          out + "'",
+      "TOPOMILL_MEMORY_LIMIT=50M");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("--set cutting.stepover=1e-5: error: key 'cutting.stepover': the run would "
+                   "need about 117 MiB") != std::string::npos);
+  CHECK(r.err.find("raise cutting.stepover (what tooth_passage's memory grows with)") !=
+        std::string::npos);
+  // A limit beyond 64 bits is no limit (1e99 wrapped around to "0 MiB are available").
+  r = testing::run_topomill("check configs/examples/quick.toml -q", "TOPOMILL_MEMORY_LIMIT=1e99");
+  CHECK(r.exit_code == 0);
   // The force/dynamics samples dominate: a fast mode sets a tiny time step on a coarse grid.
   r = testing::run_topomill(
       "run tests/stability/base.toml -q --set region.spacing=0.05 --set vibration.enabled=true "

@@ -90,27 +90,100 @@ TEST_CASE("a run killed at any moment leaves only whole files, and a rerun succe
   CHECK_FALSE(fs::exists(out + "/.incomplete"));
 }
 
-TEST_CASE("SIGINT stops a run promptly with a message and writes nothing", "[stability][kill]") {
-  // The evaluator (the reference Z-map, ~20 s) and the force stage of a scene with dynamics.
-  for (const std::string scene :
-       {"configs/paper/lambda30.toml", "configs/paper/lambda30_fz01_dynamics.toml"}) {
-    DYNAMIC_SECTION(scene) {
+TEST_CASE("SIGINT, SIGTERM and SIGHUP stop a run promptly with a message and write nothing",
+          "[stability][kill]") {
+  // The evaluator (the reference Z-map, ~20 s) and the force stage of a scene with dynamics;
+  // SIGTERM (kill, timeout, schedulers) and SIGHUP (a closed terminal) as Ctrl-C (issue 18).
+  struct Case {
+    std::string scene;
+    int signal;
+    std::string name;
+  };
+  for (const auto& c : {Case{"configs/paper/lambda30.toml", SIGINT, "SIGINT"},
+                        Case{"configs/paper/lambda30_fz01_dynamics.toml", SIGINT, "SIGINT"},
+                        Case{"configs/paper/lambda30.toml", SIGTERM, "SIGTERM"},
+                        Case{"configs/paper/lambda30.toml", SIGHUP, "SIGHUP"}}) {
+    DYNAMIC_SECTION(c.scene << " " << c.name) {
       const std::string out = testing::temp_dir("interrupted");
       const std::string log = testing::temp_dir("interrupted.log");
-      const int pid = testing::spawn_topomill({"run", scene, "-q", "--out", out}, log);
+      const int pid = testing::spawn_topomill({"run", c.scene, "-q", "--out", out}, log);
       REQUIRE(pid > 0);
       std::this_thread::sleep_for(std::chrono::milliseconds(1500));
       const auto sent = Clock::now();
-      kill(pid, SIGINT);
+      kill(pid, c.signal);
       const int status = testing::wait_for(pid);
       const double took = std::chrono::duration<double>(Clock::now() - sent).count();
       INFO(testing::read_file(log));
       REQUIRE(WIFEXITED(status));
-      CHECK(WEXITSTATUS(status) == 130);
+      CHECK(WEXITSTATUS(status) == 128 + c.signal);
       CHECK(took < 2.0);  // a check between rows, steps and passes: not the end of a stage
-      CHECK(testing::read_file(log).find("interrupted (SIGINT)") != std::string::npos);
+      CHECK(testing::read_file(log).find("interrupted (" + c.name + ")") != std::string::npos);
       CHECK_FALSE(fs::exists(out + "/summary.json"));
-      CHECK((!fs::exists(out) || fs::is_empty(out)));
+      CHECK_FALSE(fs::exists(out));  // the directory it made is removed again
     }
   }
+}
+
+TEST_CASE("a stop request while the outputs are written seals nothing new", "[stability][kill]") {
+  // Issue 18: a Ctrl-C during writing was ignored and the run sealed its result (exit 0).
+  const std::string out = testing::temp_dir("interrupted_writing");
+  const std::string log = testing::temp_dir("interrupted_writing.log");
+  const int pid = testing::spawn_topomill(with_out(kLongWrite, out), log);
+  REQUIRE(pid > 0);
+  // Stop as soon as the first staged file appears: the outputs are being written.
+  const auto started = Clock::now();
+  while (!fs::exists(out + "/.incomplete/height_raw.csv") &&
+         Clock::now() - started < std::chrono::seconds(60))
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  const auto sent = Clock::now();
+  kill(pid, SIGINT);
+  const int status = testing::wait_for(pid);
+  const double took = std::chrono::duration<double>(Clock::now() - sent).count();
+  INFO(testing::read_file(log));
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 130);
+  CHECK(took < 2.0);
+  CHECK_FALSE(fs::exists(out + "/summary.json"));
+  check_whole(out);
+}
+
+TEST_CASE("one writer per output directory: a second run is refused naming the holder, or waits",
+          "[stability][lock]") {
+  // Issue 18: two runs into one --out staged into one .incomplete/ and sealed a mix of both.
+  const std::string out = testing::temp_dir("locked");
+  const std::string log = testing::temp_dir("locked.log");
+  const std::vector<std::string> slow = {"run", "configs/paper/lambda30.toml", "-q", "--out", out};
+  const int first = testing::spawn_topomill(slow, log);
+  REQUIRE(first > 0);
+  const auto started = Clock::now();
+  while (!fs::exists(out + "/.lock") && Clock::now() - started < std::chrono::seconds(10))
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  const auto second =
+      testing::run_topomill("run configs/examples/quick.toml -q --out '" + out + "'");
+  CHECK(second.exit_code == 2);
+  CHECK(second.err.find("command line: error: key '--out': the output directory '" + out +
+                        "' is in use by another topomill run (pid " + std::to_string(first) +
+                        ")") != std::string::npos);
+  // --wait: the second run starts when the first is gone (here: stopped), and writes.
+  const std::string wait_log = testing::temp_dir("locked_wait.log");
+  const int waiting = testing::spawn_topomill(
+      {"run", "configs/examples/quick.toml", "-q", "--wait", "--out", out}, wait_log);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  CHECK_FALSE(fs::exists(out + "/summary.json"));  // still waiting
+  kill(first, SIGINT);
+  CHECK(WEXITSTATUS(testing::wait_for(first)) == 130);
+  const int status = testing::wait_for(waiting);
+  INFO(testing::read_file(wait_log));
+  CHECK(WEXITSTATUS(status) == 0);
+  CHECK(testing::read_file(out + "/summary.json").find("quick example") != std::string::npos);
+  // A directory named like an output file is refused before anything changes (was exit 1).
+  fs::remove(out + "/height_raw.csv");
+  fs::create_directories(out + "/height_raw.csv");
+  const auto blocked =
+      testing::run_topomill("run configs/examples/quick.toml -q --out '" + out + "'");
+  CHECK(blocked.exit_code == 2);
+  CHECK(blocked.err.find("'" + out + "/height_raw.csv' is a directory: expected a file there") !=
+        std::string::npos);
+  CHECK(fs::exists(out + "/summary.json"));  // the previous result still stands
 }

@@ -34,6 +34,16 @@ struct EvaluationRequest {
 // Work done, reported in summary.json ("time_steps", "edge_points", "updates", ...).
 using WorkCounts = std::map<std::string, std::uint64_t>;
 
+// What evaluate() will cost for a request, estimated before any work, each part with the scene
+// key that drives it: a scene too large for memory is refused naming that key, and before a
+// run estimated to take over a minute a line says how long and what to turn.
+struct EvaluationCost {
+  double bytes = 0;         // allocated beyond the map itself (per-thread maps, tables)
+  std::string bytes_key;    // e.g. "region.spacing", "cutting.stepover"
+  double seconds = 0;       // on one thread; 0 when the evaluator cannot say
+  std::string seconds_key;  // e.g. "evaluator.time_step"
+};
+
 class TOPOMILL_API TopographyEvaluator : public Model {
  public:
   // Lowers `map` (initialised by the core to the uncut surface) wherever an edge passes below it.
@@ -41,11 +51,10 @@ class TOPOMILL_API TopographyEvaluator : public Model {
   virtual void evaluate(const EvaluationRequest& request, HeightMap& map,
                         WorkCounts& counts) const = 0;
 
-  // Bytes evaluate() will allocate beyond `map` itself for this request (per-thread maps, time
-  // tables), so that a scene too large for memory is refused before any work.
-  virtual std::uint64_t extra_memory(const EvaluationRequest& request, const Grid& grid) const {
+  // The cost of evaluate() for this request (see EvaluationCost); by default unknown (zero).
+  virtual EvaluationCost estimate_cost(const EvaluationRequest& request, const Grid& grid) const {
     (void)request, (void)grid;
-    return 0;
+    return {};
   }
 };
 

@@ -6,6 +6,7 @@
 
 #include "code_fingerprint.hpp"
 #include "describe.hpp"
+#include "interrupt.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/gsf.hpp"
@@ -43,11 +44,8 @@ toml::table roughness_table(const Roughness& r) {
 RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
                              const std::string& out_dir,
                              std::chrono::steady_clock::time_point started) {
+  // The caller holds the directory's OutputLock: this run is its only writer.
   std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec)
-    throw InputError(SourceRef{"command line"}, "--out",
-                     "cannot create the output directory '" + out_dir + "': " + ec.message());
   // Files are written into a hidden staging directory and moved in only when all are whole, so
   // a killed run leaves its pieces there (removed by the next run), never beside summary.json.
   const fs::path staging = fs::path(out_dir) / ".incomplete";
@@ -65,6 +63,7 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
     return (staging / name).string();
   };
   for (const auto& format : scene.table("output").strings("formats")) {
+    throw_if_interrupted();  // between files: a stop request is honoured while writing too
     if (format == "csv") {
       write_csv(path("height_raw.csv"), result.raw);
       write_csv(path("height_residual.csv"), result.residual);
@@ -86,6 +85,17 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
       write_png_heatmap(path("height_residual.png"), result.residual, labels);
     }
   }
+  // What would make a move fail is refused before anything visible changes.
+  std::vector<std::string> targets = files;
+  targets.push_back("summary.json");
+  for (const auto& f : targets)
+    if (fs::is_directory(fs::path(out_dir) / f, ec))
+      throw InputError(SourceRef{"command line"}, "--out",
+                       "'" + (fs::path(out_dir) / f).string() +
+                           "' is a directory: expected a file there, or nothing (remove it or "
+                           "choose another output directory)");
+  // The last moment a stop request can be honoured: after it, the old result is replaced.
+  throw_if_interrupted();
   // A previous summary would vouch for files about to be replaced: remove it before the moves.
   fs::remove(fs::path(out_dir) / "summary.json", ec);
   for (const auto& f : files) fs::rename(staging / f, fs::path(out_dir) / f);
