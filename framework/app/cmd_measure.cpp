@@ -1,3 +1,4 @@
+#include <cmath>
 #include <iostream>
 #include <sstream>
 
@@ -34,15 +35,41 @@ int cmd_measure(const Args& args) {
   }
   if (file.empty()) throw InputError(SourceRef{"command line"}, "", "measure needs a file");
   const Form form = Form::parse(form_text, "--form");
-  if (lambda_s < 0 || lambda_c < 0 || (lambda_s > 0 && lambda_c > 0 && lambda_s >= lambda_c))
-    throw InputError(SourceRef{"command line"}, "--filter-s",
-                     "expected 0 < lambda_s < lambda_c (mm)");
+  // Each option named for itself; NaN and infinity are refused, not ignored.
+  const SourceRef cli{"command line"};
+  auto length = [&](double v, const char* option, const char* what) {
+    if (!(std::isfinite(v) && v >= 0 && v <= 1e6))
+      throw InputError(
+          cli, option,
+          std::string("expected ") + what + " from 0 to 1e6 mm, got " + format_number(v));
+  };
+  length(lambda_s, "--filter-s", "a nesting index (0: no S-filter)");
+  length(lambda_c, "--filter-l", "a cut-off (0: no L-filter)");
+  length(spacing, "--spacing", "a node spacing (0: none; CSV files need one)");
+  if (lambda_s > 0 && lambda_c > 0 && lambda_s >= lambda_c)
+    throw InputError(cli, "--filter-s",
+                     "the S-filter's nesting index " + format_number(lambda_s) +
+                         " mm is not below the L-filter's cut-off " + format_number(lambda_c) +
+                         " mm: expected lambda_s < lambda_c");
 
   Surface s = read_surface(file, spacing);
+  if (s.valid_count() < 4)
+    throw InputError(SourceRef{file}, "",
+                     "the map has " + std::to_string(s.valid_count()) +
+                         " valid points: expected at least 4 to measure");
   s = remove_form(s, form);
   if (lambda_s > 0) s = s_filter(s, lambda_s);
   if (lambda_c > 0) s = l_filter(s, lambda_c);
   const Roughness r = roughness(s.map, s.valid);
+  // Finite heights can still overflow a parameter (squares of 1e300): nothing non-finite is
+  // printed, in text or JSON.
+  for (const auto& [name, v] : r.reported_um())
+    if (!std::isfinite(v))
+      throw InputError(SourceRef{file}, "",
+                       name +
+                           " is not finite for these heights (their squares or slopes overflow "
+                           "double precision): expected heights and spacings of a real "
+                           "surface");
 
   const Grid& g = s.map.grid;
   if (json) {

@@ -22,18 +22,22 @@ namespace {
 
 std::vector<double> parse_spacings(const std::string& text) {
   std::vector<double> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
+  // Every item, the empty ones too ("" and "0.02," are refused, not a default ladder).
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
     try {
       std::size_t used = 0;
       const double v = std::stod(item, &used);
-      if (used != item.size() || !(v > 0)) throw std::invalid_argument(item);
+      if (used != item.size() || !(v > 0) || !std::isfinite(v)) throw std::invalid_argument(item);
       out.push_back(v);
     } catch (const std::exception&) {
       throw InputError(SourceRef{"command line"}, "--spacing",
                        "'" + item + "' is not a positive spacing in mm (e.g. 0.02,0.01,0.005)");
     }
+    if (comma == text.size()) break;
+    start = comma + 1;
   }
   return out;
 }
@@ -50,9 +54,17 @@ Knob parse_knob(const std::string& spec) {
         SourceRef{"command line"}, "--knob",
         "'" + spec + "': expected EVALUATOR.key=v1,v2 (e.g. zmap.time_step_fraction=0.9,0.45)");
   Knob k{spec.substr(0, dot), spec.substr(dot + 1, eq - dot - 1), {}};
-  std::stringstream in(spec.substr(eq + 1));
-  std::string v;
-  while (std::getline(in, v, ',')) k.values.push_back(v);
+  const std::string list = spec.substr(eq + 1);
+  std::size_t start = 0;
+  for (;;) {  // every item, the empty ones too: "key=" used to drop the evaluator's cases
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    k.values.push_back(list.substr(start, comma - start));
+    if (k.values.back().empty())
+      throw InputError(SourceRef{"command line"}, "--knob",
+                       "'" + spec + "': an empty value in the list: expected v1,v2,...");
+    if (comma == list.size()) break;
+    start = comma + 1;
+  }
   return k;
 }
 
@@ -98,7 +110,7 @@ int cmd_study(const Args& args) {
     throw InputError(SourceRef{"command line"}, "--reference",
                      "'" + reference + "' is not among the studied evaluators");
   std::vector<double> spacings;
-  if (spacings_text.empty()) {
+  if (!loaded.vm.count("spacing")) {
     const double s = loaded.scene->table("region").number("spacing");
     spacings = {s, s / 2, s / 4};
   } else {

@@ -143,6 +143,13 @@ int cmd_sweep(const Args& args) {
   std::vector<Varied> varied;
   for (const auto& spec : vary) {
     varied.push_back(parse_vary(spec));
+    for (std::size_t k = 0; k + 1 < varied.size(); ++k)
+      if (varied[k].key == varied.back().key)
+        throw InputError(SourceRef{"command line"}, "--vary",
+                         "'" + varied.back().key +
+                             "' is varied twice: expected each key once, with all its values "
+                             "in one list (--vary " +
+                             varied.back().key + "=v1,v2,...)");
     for (const auto& value : varied.back().values)
       check_variant(b, {varied.back().key + "=" + value}, "--vary " + varied.back().key);
   }

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "io/read_file.hpp"
 #include "suggest.hpp"
 
 namespace fs = std::filesystem;
@@ -256,11 +257,9 @@ toml::table parse_or_throw(const std::string& text, const std::string& name) {
 }  // namespace
 
 SceneDocument SceneDocument::parse_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(SourceRef{path}, "", "cannot read the scene file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parse_string(buffer.str(), path);
+  // A scene is a few kilobytes: 16 MiB is far beyond any, and a device or a directory given as
+  // the scene is named as such (a directory read as "missing required table [cutting]").
+  return parse_string(read_file_bounded(path, 16u << 20, "a scene file (TOML)"), path);
 }
 
 SceneDocument SceneDocument::parse_string(const std::string& text, const std::string& name) {
@@ -278,6 +277,11 @@ void SceneDocument::apply_override(const std::string& assignment) {
   std::string path = assignment.substr(0, eq);
   std::string text = assignment.substr(eq + 1);
 
+  // One value on one line: a newline would let the rest of the text add tables of its own
+  // ("scene.name=\"x\"\n[evil]\na=1" kept "x" and dropped the rest without a word).
+  if (text.find_first_of("\n\r") != std::string::npos)
+    throw InputError(SourceRef{"--set " + printable(assignment)}, path,
+                     "the value holds a line break: expected one TOML value on one line");
   // The value as TOML if it reads as one ("4", "true", "[1, 2]", "\"cw\""), else a bare string.
   toml::table parsed;
   try {
@@ -285,8 +289,11 @@ void SceneDocument::apply_override(const std::string& assignment) {
   } catch (const toml::parse_error&) {
     parsed = toml::table{{"v", text}};
   }
+  if (parsed.size() != 1)
+    throw InputError(origin, path, "expected one TOML value, got '" + text + "'");
 
-  // Walk "a.b[2].c", creating tables on the way.
+  // Walk "a.b[2].c", creating tables on the way; a table made here is the override's, so that a
+  // message about it (an unknown table 'a') names the --set, not the scene file.
   toml::table* table = root_.get();
   std::size_t start = 0;
   while (true) {
@@ -317,7 +324,10 @@ void SceneDocument::apply_override(const std::string& assignment) {
         throw InputError(origin, path, "'" + part + "' is not an element of an array of tables");
       table = (*arr)[index].as_table();
     } else {
-      if (!table->contains(key)) table->insert(key, toml::table{});
+      if (!table->contains(key)) {
+        table->insert(key, toml::table{});
+        overrides_.emplace(path.substr(0, dot), origin);
+      }
       table = (*table)[key].as_table();
       if (!table) throw InputError(origin, path, "'" + key + "' is not a table");
     }

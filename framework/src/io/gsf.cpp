@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "io/atomic_file.hpp"
+#include "io/read_file.hpp"
 #include "topomill/error.hpp"
 
 namespace topomill {
@@ -19,11 +20,7 @@ constexpr const char* kMagic = "Gwyddion Simple Field 1.0\n";
 }  // namespace
 
 Surface read_gsf(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot read the file");
-  std::stringstream buf;
-  buf << in.rdbuf();
-  const std::string bytes = buf.str();
+  const std::string bytes = read_file_bounded(path, readable_bytes(), "a Gwyddion simple field");
   if (bytes.rfind(kMagic, 0) != 0) fail(path, "not a Gwyddion simple field: bad first line");
   const std::size_t nul = bytes.find('\0');
   if (nul == std::string::npos) fail(path, "the header is not terminated by NUL padding");
@@ -38,7 +35,9 @@ Surface read_gsf(const std::string& path) {
       s.erase(s.find_last_not_of(" \t\r") + 1);
       return s;
     };
-    keys[trim(line.substr(0, eq))] = trim(line.substr(eq + 1));
+    const std::string key = trim(line.substr(0, eq));
+    if (!keys.emplace(key, trim(line.substr(eq + 1))).second)
+      fail(path, key + " is given twice in the header: expected each key once");
   }
   auto number = [&](const char* key, double fallback) {
     auto it = keys.find(key);
@@ -50,8 +49,12 @@ Surface read_gsf(const std::string& path) {
     }
   };
   const double xres = number("XRes", -1), yres = number("YRes", -1);
-  if (!(xres >= 1 && yres >= 1 && xres * yres <= 4e8))
-    fail(path, "XRes and YRes must be given, >= 1");
+  if (!keys.count("XRes") || !keys.count("YRes")) fail(path, "XRes and YRes must be given");
+  for (const double res : {xres, yres})
+    if (!(res >= 1 && res == std::floor(res) && res <= 1e8))
+      fail(path, "XRes and YRes must be whole numbers from 1 to 1e8, got " + format_number(res));
+  if (xres * yres > 4e8)
+    fail(path, "XRes x YRes = " + format_number(xres * yres) + " points: expected at most 4e8");
   const std::size_t data_at = (nul / 4 + 1) * 4;  // the first 4-byte boundary after the header
   Grid g;
   g.nx = static_cast<std::size_t>(xres), g.ny = static_cast<std::size_t>(yres);
@@ -62,6 +65,11 @@ Surface read_gsf(const std::string& path) {
     fail(path, "the data are truncated: " +
                    std::to_string(bytes.size() - std::min(bytes.size(), data_at)) + " bytes for " +
                    std::to_string(g.size()) + " float32 points");
+  if (bytes.size() > data_at + g.size() * 4)
+    fail(path, std::to_string(bytes.size() - data_at - g.size() * 4) + " bytes follow the " +
+                   std::to_string(g.size()) +
+                   " float32 points: expected none (is XRes or YRes wrong?)");
+  check_map_memory(path, static_cast<double>(g.size()));
   Surface s;
   s.source = path;
   s.map = HeightMap(g);

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "io/atomic_file.hpp"
+#include "io/read_file.hpp"
 #include "topomill/error.hpp"
 
 namespace topomill {
@@ -30,17 +31,16 @@ T get(const std::string& b, std::size_t at) {
 }
 
 void check_dims(const std::string& path, double nx, double ny) {
-  if (!(nx >= 1 && ny >= 1 && nx <= 65535 && ny <= 65535))
-    fail(path, "NumPoints and NumProfiles must be 1 to 65535");
+  if (!(nx >= 1 && ny >= 1 && nx <= 65535 && ny <= 65535 && nx == std::floor(nx) &&
+        ny == std::floor(ny)))
+    fail(path, "NumPoints and NumProfiles must be whole numbers from 1 to 65535, got " +
+                   format_number(nx) + " and " + format_number(ny));
+  check_map_memory(path, nx * ny);
 }
 }  // namespace
 
 Surface read_sdf(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot read the file");
-  std::stringstream buf;
-  buf << in.rdbuf();
-  const std::string bytes = buf.str();
+  const std::string bytes = read_file_bounded(path, readable_bytes(), "an SDF height map");
   Surface s;
   s.source = path;
   Grid g;

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "io/atomic_file.hpp"
+#include "io/read_file.hpp"
 #include "topomill/error.hpp"
 
 namespace topomill {
@@ -29,6 +30,7 @@ struct ZipCloser {
 class Archive {
  public:
   explicit Archive(const std::string& path) : path_(path) {
+    regular_file_size(path, readable_bytes(), "an x3p file (a zip archive)");
     int err = 0;
     zip_.reset(zip_open(path.c_str(), ZIP_RDONLY | ZIP_CHECKCONS, &err));
     if (!zip_) {
@@ -42,9 +44,21 @@ class Archive {
   bool has(const std::string& name) const {
     return zip_name_locate(zip_.get(), name.c_str(), 0) >= 0;
   }
-  std::string read(const std::string& name) const {
+  // The entry `name`, whose size must be at most `max_bytes` (exactly, when `exact`). The size
+  // the zip header claims is checked before anything is allocated: against that bound, and
+  // against what its compressed bytes can hold (deflate expands 1032-fold at most; a 4 KB file
+  // claiming a 4 GiB entry cost 4.2 GB and 15 s before).
+  std::string read(const std::string& name, std::uint64_t max_bytes, bool exact = false) const {
     zip_stat_t st;
     if (zip_stat(zip_.get(), name.c_str(), 0, &st) != 0) fail("the archive has no '" + name + "'");
+    if (!(st.valid & ZIP_STAT_SIZE) || !(st.valid & ZIP_STAT_COMP_SIZE))
+      fail("the archive does not give the size of '" + name + "'");
+    if (exact ? st.size != max_bytes : st.size > max_bytes)
+      fail("'" + name + "' holds " + std::to_string(st.size) + " bytes: expected " +
+           (exact ? "" : "at most ") + std::to_string(max_bytes));
+    if (static_cast<double>(st.size) > 1100.0 * static_cast<double>(st.comp_size) + 1024)
+      fail("'" + name + "' claims " + std::to_string(st.size) + " bytes from " +
+           std::to_string(st.comp_size) + " compressed: more than compression can produce");
     std::unique_ptr<zip_file_t, int (*)(zip_file_t*)> f(zip_fopen(zip_.get(), name.c_str(), 0),
                                                         zip_fclose);
     if (!f) fail("cannot open '" + name + "' in the archive");
@@ -71,9 +85,11 @@ std::string lower(std::string s) {
 
 Surface read_x3p(const std::string& path) {
   Archive zip(path);
-  const std::string xml = zip.read("main.xml");
+  // main.xml: the metadata, and the heights themselves when they are a DataList (a few dozen
+  // bytes a point): bounded by memory like the file.
+  const std::string xml = zip.read("main.xml", readable_bytes());
   if (zip.has("md5checksum.hex")) {
-    std::istringstream line(zip.read("md5checksum.hex"));
+    std::istringstream line(zip.read("md5checksum.hex", 4096));
     std::string want;
     line >> want;
     if (lower(want) != md5_hex(xml.data(), xml.size()))
@@ -110,6 +126,7 @@ Surface read_x3p(const std::string& path) {
   Grid g;
   g.nx = static_cast<std::size_t>(nx), g.ny = static_cast<std::size_t>(ny);
   g.dx = increment("CX") * 1e3, g.dy = increment("CY") * 1e3;
+  check_map_memory(path, static_cast<double>(nx) * static_cast<double>(ny));
   s.map = HeightMap(g);
   const std::size_t n = g.size();
   s.valid.assign(n, 1);
@@ -118,19 +135,16 @@ Surface read_x3p(const std::string& path) {
   const pugi::xml_node list = root.child("Record3").child("DataList");
   if (link) {
     const std::string name = link.child("PointDataLink").text().as_string();
-    const std::string data = zip.read(name);
-    const std::string want = link.child("MD5ChecksumPointData").text().as_string();
-    if (!want.empty() && lower(want) != md5_hex(data.data(), data.size()))
-      zip.fail("the MD5 checksum of " + name + " does not match MD5ChecksumPointData");
     const std::size_t width = type == "I"                  ? 2
                               : type == "L" || type == "F" ? 4
                               : type == "D"                ? 8
                                                            : 0;
     if (!width) zip.fail("unknown CZ DataType '" + type + "' (expected I, L, F or D)");
-    if (data.size() != n * width)
-      zip.fail(name + " holds " + std::to_string(data.size()) + " bytes; " + std::to_string(nx) +
-               " x " + std::to_string(ny) + " points of type " + type + " need " +
-               std::to_string(n * width));
+    // Exactly what the matrix dimension asks for (nx x ny points of type CZ DataType).
+    const std::string data = zip.read(name, n * width, /*exact=*/true);
+    const std::string want = link.child("MD5ChecksumPointData").text().as_string();
+    if (!want.empty() && lower(want) != md5_hex(data.data(), data.size()))
+      zip.fail("the MD5 checksum of " + name + " does not match MD5ChecksumPointData");
     for (std::size_t i = 0; i < n; ++i) {
       const char* p = data.data() + i * width;  // little-endian, as the standard says
       double v = 0;
@@ -154,7 +168,7 @@ Surface read_x3p(const std::string& path) {
     }
     const std::string valid_name = link.child("ValidPointsLink").text().as_string();
     if (!valid_name.empty()) {
-      const std::string bits = zip.read(valid_name);
+      const std::string bits = zip.read(valid_name, (n + 7) / 8 + 64);
       const std::string vwant = link.child("MD5ChecksumValidPoints").text().as_string();
       if (!vwant.empty() && lower(vwant) != md5_hex(bits.data(), bits.size()))
         zip.fail("the MD5 checksum of " + valid_name + " does not match MD5ChecksumValidPoints");

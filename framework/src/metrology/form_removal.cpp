@@ -1,6 +1,7 @@
 #include "metrology/form_removal.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 
 #include "topomill/error.hpp"
@@ -92,8 +93,53 @@ Surface remove_polynomial(const Surface& in, int order) {
   return out;
 }
 
-// Circle (yc, zc, radius) through the (y, z) points: algebraic fit (Kasa), then Gauss-Newton on
-// the geometric distances.
+// The arc of the cross-section (axis along X) as the curve A (y^2 + z^2) + B y + C z + D = 0,
+// normalised so that B^2 + C^2 - 4 A D = 1 (Pratt). A = 0 is a straight line: a flat or tilted
+// profile is the limit of the family, not a singular fit (the centre-and-radius form fitted a
+// wrong circle of huge radius to a flat surface and reported Sa 25 um). A point's signed
+// distance from the curve is 2 P / (1 + sqrt(1 + 4 A P)), P the left side (Chernov and Lesort),
+// which stays exact as A -> 0. Coordinates are centred and scaled to a unit spread first.
+struct Curve {
+  double A = 0, B = 0, C = 1, D = 0;
+  double distance(double y, double z) const {
+    const double P = A * (y * y + z * z) + B * y + C * z + D;
+    return 2 * P / (1 + std::sqrt(std::max(0.0, 1 + 4 * A * P)));
+  }
+  // From the three free parameters (A, D, theta): B = s cos(theta), C = s sin(theta).
+  static Curve from(const Eigen::Vector3d& p) {
+    const double s = std::sqrt(std::max(0.0, 1 + 4 * p(0) * p(1)));
+    return {p(0), s * std::cos(p(2)), s * std::sin(p(2)), p(1)};
+  }
+};
+
+// Pratt's algebraic fit: the eigenvector of N^-1 M with the smallest non-negative eigenvalue,
+// M the moments of (w, y, z, 1), w = y^2 + z^2, N the constraint's matrix.
+Curve algebraic_fit(const std::vector<double>& ys, const std::vector<double>& zs) {
+  Eigen::Matrix4d M = Eigen::Matrix4d::Zero();
+  for (std::size_t k = 0; k < ys.size(); ++k) {
+    const Eigen::Vector4d v(ys[k] * ys[k] + zs[k] * zs[k], ys[k], zs[k], 1.0);
+    M += v * v.transpose();
+  }
+  Eigen::Matrix4d Ninv = Eigen::Matrix4d::Zero();
+  Ninv(0, 3) = Ninv(3, 0) = -0.5, Ninv(1, 1) = Ninv(2, 2) = 1;
+  const Eigen::EigenSolver<Eigen::Matrix4d> es(Ninv * M);
+  int best = -1;
+  for (int e = 0; e < 4; ++e) {
+    const auto lambda = es.eigenvalues()(e);
+    if (std::abs(lambda.imag()) > 1e-12 * (1 + std::abs(lambda.real())) ||
+        lambda.real() < -1e-12 * M.norm())
+      continue;
+    if (best < 0 || lambda.real() < es.eigenvalues()(best).real()) best = e;
+  }
+  Curve c;
+  if (best < 0) return c;
+  const Eigen::Vector4d a = es.eigenvectors().col(best).real();
+  const double norm = a(1) * a(1) + a(2) * a(2) - 4 * a(0) * a(3);
+  if (!(norm > 0)) return c;
+  const double f = 1 / std::sqrt(norm);
+  return {a(0) * f, a(1) * f, a(2) * f, a(3) * f};
+}
+
 Surface remove_arc(const Surface& in) {
   const Grid& g = in.map.grid;
   const std::size_t n = in.valid_count();
@@ -102,38 +148,61 @@ Surface remove_arc(const Surface& in) {
   for (std::size_t j = 0; j < g.ny; ++j)
     for (std::size_t i = 0; i < g.nx; ++i)
       if (in.is_valid(g.index(i, j))) ys.push_back(g.y(j)), zs.push_back(in.map.at(i, j));
-  const double y0 = g.y0 + 0.5 * g.dy * (g.ny - 1);
-  double z0 = 0;
-  for (double z : zs) z0 += z / static_cast<double>(n);
-  Eigen::MatrixXd A(n, 3);
-  Eigen::VectorXd b(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const double y = ys[k] - y0, z = zs[k] - z0;
-    A.row(k) << y, z, 1.0;
-    b(k) = -(y * y + z * z);
-  }
-  const Eigen::Vector3d s = A.colPivHouseholderQr().solve(b);
-  double yc = -s(0) / 2, zc = -s(1) / 2, r = std::sqrt(std::max(0.0, yc * yc + zc * zc - s(2)));
-  if (!(r > 0) || !std::isfinite(r))
-    throw InputError(SourceRef{in.source}, "", "no arc fits these points (a plane? use plane)");
-  for (int it = 0; it < 50; ++it) {
-    Eigen::MatrixXd J(n, 3);
-    Eigen::VectorXd e(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      const double dy = ys[k] - y0 - yc, dz = zs[k] - z0 - zc, d = std::hypot(dy, dz);
-      e(k) = d - r;
-      J.row(k) << -dy / d, -dz / d, -1.0;
+  double ym = 0, zm = 0;
+  for (std::size_t k = 0; k < n; ++k) ym += ys[k] / n, zm += zs[k] / n;
+  double scale = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    scale = std::max({scale, std::abs(ys[k] - ym), std::abs(zs[k] - zm)});
+  if (!(scale > 0)) scale = 1;
+  for (std::size_t k = 0; k < n; ++k) ys[k] = (ys[k] - ym) / scale, zs[k] = (zs[k] - zm) / scale;
+
+  // Geometric refinement: Levenberg-Marquardt on the distances over (A, D, theta).
+  const Curve start = algebraic_fit(ys, zs);
+  Eigen::Vector3d p(start.A, start.D, std::atan2(start.C, start.B));
+  auto residuals = [&](const Eigen::Vector3d& q) {
+    const Curve c = Curve::from(q);
+    Eigen::VectorXd e(static_cast<Eigen::Index>(n));
+    for (std::size_t k = 0; k < n; ++k) e(static_cast<Eigen::Index>(k)) = c.distance(ys[k], zs[k]);
+    return e;
+  };
+  Eigen::VectorXd e = residuals(p);
+  double mu = 1e-3;
+  for (int it = 0; it < 100; ++it) {
+    Eigen::MatrixXd J(static_cast<Eigen::Index>(n), 3);
+    for (int a = 0; a < 3; ++a) {
+      const double h = 1e-7 * (1 + std::abs(p(a)));
+      Eigen::Vector3d hi = p, lo = p;
+      hi(a) += h, lo(a) -= h;
+      J.col(a) = (residuals(hi) - residuals(lo)) / (2 * h);
     }
-    const Eigen::Vector3d step = J.colPivHouseholderQr().solve(-e);
-    yc += step(0), zc += step(1), r += step(2);
-    if (step.norm() < 1e-15 * (1 + r)) break;
+    const Eigen::Matrix3d JtJ = J.transpose() * J;
+    const Eigen::Vector3d g_ = J.transpose() * e;
+    bool improved = false;
+    for (int tries = 0; tries < 20 && !improved; ++tries) {
+      Eigen::Matrix3d H = JtJ;
+      H.diagonal() *= 1 + mu;
+      const Eigen::Vector3d step = H.ldlt().solve(-g_);
+      const Eigen::VectorXd e_new = residuals(p + step);
+      if (e_new.squaredNorm() < e.squaredNorm()) {
+        p += step, e = e_new, mu = std::max(mu / 10, 1e-12), improved = true;
+        if (step.norm() < 1e-15 * (1 + p.norm())) it = 100;
+      } else {
+        mu *= 10;
+      }
+    }
+    if (!improved) break;
   }
-  const bool convex = zc < 0;  // the centre below the surface
+  const Curve c = Curve::from(p);
+  if (!std::isfinite(c.A + c.B + c.C + c.D))
+    throw InputError(SourceRef{in.source}, "", "no arc fits these points");
+  // Positive residual = above the arc: the sign of the distance's growth with z at the centroid.
+  // (At the centroid, the origin, dP/dz is C.)
+  const double up = c.C >= 0 ? 1.0 : -1.0;
   Surface out = in;
   for (std::size_t j = 0; j < g.ny; ++j)
     for (std::size_t i = 0; i < g.nx; ++i) {
-      const double d = std::hypot(g.y(j) - y0 - yc, in.map.at(i, j) - z0 - zc);
-      out.map.at(i, j) = convex ? d - r : r - d;
+      const double y = (g.y(j) - ym) / scale, z = (in.map.at(i, j) - zm) / scale;
+      out.map.at(i, j) = up * c.distance(y, z) * scale;
     }
   return out;
 }

@@ -6,9 +6,13 @@
 namespace topomill {
 
 namespace {
-std::vector<double> kernel(double cutoff, double step) {
+// Truncated at one cut-off, and at the map's length (n points): a point farther than the map is
+// long never meets another, so the result is the same, and a cut-off of 1e6 mm no longer asks for
+// a kernel of 1e9 weights (3 GB; 1e100 overflowed the count).
+std::vector<double> kernel(double cutoff, double step, std::size_t n) {
   const double alpha = std::sqrt(std::log(2.0) / M_PI);
-  const auto half = static_cast<long>(std::floor(cutoff / step));
+  const auto half =
+      static_cast<long>(std::min(std::floor(cutoff / step), static_cast<double>(n - 1)));
   std::vector<double> k(static_cast<std::size_t>(2 * half + 1));
   for (long i = -half; i <= half; ++i) {
     const double u = i * step / (alpha * cutoff);
@@ -44,7 +48,7 @@ Surface gaussian_lowpass(const Surface& s, double cutoff) {
     m[i] = s.is_valid(i) ? 1.0 : 0.0;
     zm[i] = s.is_valid(i) ? s.map.z[i] : 0.0;  // not m z: an invalid point may hold NaN
   }
-  const auto kx = kernel(cutoff, g.dx), ky = kernel(cutoff, g.dy);
+  const auto kx = kernel(cutoff, g.dx, g.nx), ky = kernel(cutoff, g.dy, g.ny);
   convolve(zm, tmp, g, kx, true);
   convolve(tmp, zm, g, ky, false);
   convolve(m, tmp, g, kx, true);
