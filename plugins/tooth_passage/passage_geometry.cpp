@@ -28,6 +28,7 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
       iterations(iterations_),
       teeth(rq.tool->teeth()),
       along_y(rq.path->feed_axis() == ToolPath::FeedAxis::Y),
+      stop(rq.stop),
       lag_shape(*rq.tool) {
   for (int j = 0; j < teeth; ++j) tooth_angle.push_back(tool->tooth_angle(j));
   sin_tip = std::sin(tool->min_polar_angle());
@@ -270,7 +271,8 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
     if (q.over) below = std::min(below, q.height);
   };
   std::vector<Piece> stack{{end(a), end(b)}};
-  while (!stack.empty()) {
+  // A stop request is honoured here too: on a steep face one node's pieces can take a minute.
+  while (!stack.empty() && !s_.stopped()) {
     Piece p = stack.back();
     stack.pop_back();
     const double h = p.hi.at.t - p.lo.at.t;

@@ -8,6 +8,8 @@
 // atan2(d): a root of g_j(t) = 0 mod 2 pi, g growing at about the spindle rate.
 #pragma once
 
+#include <atomic>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -38,6 +40,10 @@ struct PassageSetup {
   double margin, kappa;
   int iterations, teeth;
   bool along_y;
+  // The run's stop request (may be null): a row checks it at every node, since one row can take
+  // seconds on a steep face or at a tiny step-over.
+  const std::atomic<bool>* stop = nullptr;
+  bool stopped() const { return stop && stop->load(std::memory_order_relaxed); }
   std::vector<double> tooth_angle;
   double sin_tip, lag_tip;          // below the tip angle the lag is held (ToolGeometry)
   LagShape lag_shape;               // bounds of the lag's turn, for the phase bounds

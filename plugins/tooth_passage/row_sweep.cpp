@@ -40,6 +40,7 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
   // only the second in a row does.
   const int misses_to_stop = s_.path->corrected() ? 2 : 1;
   for (std::size_t i = 0; i < xs.size(); ++i) {
+    if (s_.stopped()) return;  // the map is discarded
     const double x = xs[i], key = s_.along_y ? x : y;
     exact_used_ = fallback_used_ = false;
     // Passes nearest first, outwards on both sides.
@@ -141,6 +142,7 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
   bool irregular = false;
   double h = ideal ? walk(geo, st, t_b, best, counts)
                    : walk_corrected(geo, st, t_b, best, counts, irregular);
+  if (s_.stopped()) return INFINITY;  // a walk cut short is not irregular: the map is discarded
   if (irregular) {
     // The reference's own walk, from the reference's own bottom (which the corrected branch
     // has already), so that the result is its.
@@ -223,7 +225,9 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
     for (int side = 0; side < 2; ++side) {
       const double dir = side ? 1.0 : -1.0;
       double& edge = zone[side];
-      while (edge > -rev / 2 && edge < t_end + rev / 2 &&
+      // (On a steep face this can walk a whole pass, revolution by revolution, for one node:
+      // a stop request is checked at each.)
+      while (edge > -rev / 2 && edge < t_end + rev / 2 && !s_.stopped() &&
              geo.envelope(edge) < std::min(best, best_node) &&
              !geo.monotone(edge, edge + dir * 1.1 * rev)) {
         exact(-1, std::min(edge, edge + dir * rev), std::max(edge, edge + dir * rev));
@@ -481,7 +485,8 @@ double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, doubl
     const double dir = side ? 1.0 : -1.0;
     double& stop = st.stop[side];
     if (std::isnan(stop) || dir * (stop - t_b) < beyond) stop = t_b + dir * beyond;
-    while (geo.bound(stop) < target && dir * (stop - t_b) < t_end + rev) stop += dir * 0.5 * rev;
+    while (geo.bound(stop) < target && dir * (stop - t_b) < t_end + rev && !s_.stopped())
+      stop += dir * 0.5 * rev;
     while (dir * (stop - dir * 0.5 * rev - t_b) >= beyond &&
            geo.bound(stop - dir * 0.5 * rev) >= target)
       stop -= dir * 0.5 * rev;
@@ -492,7 +497,7 @@ double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, doubl
       const double dir = side ? 1.0 : -1.0;
       std::vector<Root>& out = side ? later_[j] : before_[j];
       double t_prev = first[j];
-      for (int m = 1; m < 100000; ++m) {
+      for (int m = 1; m < 100000 && !s_.stopped(); ++m) {
         const double guess = t_prev + dir * rev;
         if (guess < -rev / 2 || guess > t_end + rev / 2) break;
         // Every later passage lies beyond the next one's least gap (at most half a revolution).

@@ -102,7 +102,8 @@ TEST_CASE("SIGINT, SIGTERM and SIGHUP stop a run promptly with a message and wri
   for (const auto& c : {Case{"configs/paper/lambda30.toml", SIGINT, "SIGINT"},
                         Case{"configs/paper/lambda30_fz01_dynamics.toml", SIGINT, "SIGINT"},
                         Case{"configs/paper/lambda30.toml", SIGTERM, "SIGTERM"},
-                        Case{"configs/paper/lambda30.toml", SIGHUP, "SIGHUP"}}) {
+                        Case{"configs/paper/lambda30.toml", SIGHUP, "SIGHUP"},
+                        Case{"tests/stability/steep_slow_node.toml", SIGINT, "SIGINT"}}) {
     DYNAMIC_SECTION(c.scene << " " << c.name) {
       const std::string out = testing::temp_dir("interrupted");
       const std::string log = testing::temp_dir("interrupted.log");
