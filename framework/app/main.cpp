@@ -36,8 +36,9 @@ void usage(std::ostream& os) {
   for (const auto& c : kCommands)
     os << "  " << c.name << std::string(10 - std::string(c.name).size(), ' ') << c.summary << "\n";
   os << "\n'topomill COMMAND --help' shows a command's options.\n"
-        "exit codes: 0 ok, 1 internal failure, 2 bad input (scene, option, file), 128 + the "
-        "signal when stopped by SIGINT (130), SIGHUP (129) or SIGTERM (143)\n";
+        "exit codes: 0 ok, 1 internal failure, 2 bad input (scene, option, file), 3 some cases\n"
+        "of a batch command failed, 128 + the signal when stopped by SIGINT (130), SIGHUP (129)\n"
+        "or SIGTERM (143)\n";
 }
 
 }  // namespace

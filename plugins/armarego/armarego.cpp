@@ -23,36 +23,25 @@ class Armarego : public ForceModel {
  public:
   static Schema schema() {
     Schema s;
-    s.add_number("Ktc", "Tangential cutting coefficient")
-        .with_unit("N/mm^2")
-        .at_least(-1e6)
-        .at_most(1e6)
-        .with_default(1512.8);
-    s.add_number("Krc", "Radial cutting coefficient")
-        .with_unit("N/mm^2")
-        .at_least(-1e6)
-        .at_most(1e6)
-        .with_default(656.8);
-    s.add_number("Kac", "Axial cutting coefficient")
-        .with_unit("N/mm^2")
-        .at_least(-1e6)
-        .at_most(1e6)
-        .with_default(-1123.4);
-    s.add_number("Kte", "Tangential edge coefficient")
-        .with_unit("N/mm")
-        .at_least(-1e5)
-        .at_most(1e5)
-        .with_default(198.5);
-    s.add_number("Kre", "Radial edge coefficient")
-        .with_unit("N/mm")
-        .at_least(-1e5)
-        .at_most(1e5)
-        .with_default(110.1);
-    s.add_number("Kae", "Axial edge coefficient")
-        .with_unit("N/mm")
-        .at_least(-1e5)
-        .at_most(1e5)
-        .with_default(-42.4);
+    // Table 3's values. Bounded far beyond any material (a few thousand N/mm^2) so that a typo
+    // of 1e308 is refused at its key instead of overflowing the force.
+    struct Coefficient {
+      const char *name, *doc, *unit;
+      double value, bound;
+    };
+    for (const Coefficient& c : {
+             Coefficient{"Ktc", "Tangential cutting coefficient", "N/mm^2", 1512.8, 1e6},
+             Coefficient{"Krc", "Radial cutting coefficient", "N/mm^2", 656.8, 1e6},
+             Coefficient{"Kac", "Axial cutting coefficient", "N/mm^2", -1123.4, 1e6},
+             Coefficient{"Kte", "Tangential edge coefficient", "N/mm", 198.5, 1e5},
+             Coefficient{"Kre", "Radial edge coefficient", "N/mm", 110.1, 1e5},
+             Coefficient{"Kae", "Axial edge coefficient", "N/mm", -42.4, 1e5},
+         })
+      s.add_number(c.name, c.doc)
+          .with_unit(c.unit)
+          .at_least(-c.bound)
+          .at_most(c.bound)
+          .with_default(c.value);
     s.add_number("element_angle",
                  "Polar-angle size of an edge element; elements are fixed on the tool (a quarter "
                  "circle is divided into equal ones) and an element the CATW cuts counts in part")

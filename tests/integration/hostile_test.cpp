@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "support/run_command.hpp"
+#include "support/zip_files.hpp"
 
 namespace fs = std::filesystem;
 
@@ -57,16 +58,6 @@ std::string x3p_xml(long nx, long ny, bool with_mask) {
      << (with_mask ? "<ValidPointsLink>bindata/valid.bin</ValidPointsLink>" : "")
      << "</DataLink></Record3></p:ISO5436_2>\n";
   return os.str();
-}
-
-void write_zip(const std::string& path,
-               const std::vector<std::pair<std::string, std::string>>& files) {
-  int err = 0;
-  zip_t* z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
-  REQUIRE(z);
-  for (const auto& [name, content] : files)
-    zip_file_add(z, name.c_str(), zip_source_buffer(z, content.data(), content.size(), 0), 0);
-  REQUIRE(zip_close(z) == 0);
 }
 
 // Rewrites the uncompressed size of every entry in a zip's local and central headers (what a
@@ -112,13 +103,13 @@ TEST_CASE("hostile inputs are refused with exit 2, quickly and within bounded me
   write_text(dir + "/numpoints.sdf",
              "aISO-1.0\nNumPoints = 20.5\nNumProfiles = 2\nXscale = 1e-6\nYscale = 1e-6\n"
              "Zscale = 1e-6\n*\n1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21\n*\n");
-  write_zip(dir + "/no_valid.x3p", {{"main.xml", x3p_xml(4, 4, true)},
-                                    {"bindata/data.bin", std::string(16 * 8, '\0')},
-                                    {"bindata/valid.bin", std::string(2, '\0')}});
-  write_zip(dir + "/too_many.x3p",
-            {{"main.xml", x3p_xml(20000, 20000, false)}, {"bindata/data.bin", "tiny"}});
-  write_zip(dir + "/lying.x3p", {{"main.xml", x3p_xml(100, 100, false)},
-                                 {"bindata/data.bin", std::string(100 * 100 * 8, '\0')}});
+  testing::write_zip(dir + "/no_valid.x3p", {{"main.xml", x3p_xml(4, 4, true)},
+                                             {"bindata/data.bin", std::string(16 * 8, '\0')},
+                                             {"bindata/valid.bin", std::string(2, '\0')}});
+  testing::write_zip(dir + "/too_many.x3p",
+                     {{"main.xml", x3p_xml(20000, 20000, false)}, {"bindata/data.bin", "tiny"}});
+  testing::write_zip(dir + "/lying.x3p", {{"main.xml", x3p_xml(100, 100, false)},
+                                          {"bindata/data.bin", std::string(100 * 100 * 8, '\0')}});
   claim_size(dir + "/lying.x3p", 0xF0000000u);  // "4 GiB" from a few hundred bytes
   fs::create_directories(dir + "/scene_dir");
   fs::create_symlink("/dev/zero", dir + "/zero.csv");

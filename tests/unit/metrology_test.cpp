@@ -19,6 +19,7 @@
 #include "metrology/read_surface.hpp"
 #include "roughness.hpp"
 #include "support/run_command.hpp"
+#include "support/zip_files.hpp"
 #include "topomill/error.hpp"
 
 using namespace topomill;
@@ -45,16 +46,6 @@ double max_abs(const Surface& s) {
   return m;
 }
 
-// An x3p built by hand, for corrupt variants.
-void write_zip(const std::string& path,
-               const std::vector<std::pair<std::string, std::string>>& files) {
-  int err = 0;
-  zip_t* z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
-  REQUIRE(z);
-  for (const auto& [name, content] : files)
-    zip_file_add(z, name.c_str(), zip_source_buffer(z, content.data(), content.size(), 0), 0);
-  REQUIRE(zip_close(z) == 0);
-}
 }  // namespace
 
 TEST_CASE("x3p-2.x3p gives the agreed reference values", "[metrology][refdata]") {
@@ -330,12 +321,13 @@ TEST_CASE("corrupt and inconsistent files are refused with what is wrong", "[met
     zip_fclose(f);
     zip_discard(z);
   }
-  write_zip(dir + "/md5.x3p",
-            {{"main.xml", xml + " "},
-             {"md5checksum.hex", "00000000000000000000000000000000 *main.xml\n"}});
+  testing::write_zip(dir + "/md5.x3p",
+                     {{"main.xml", xml + " "},
+                      {"md5checksum.hex", "00000000000000000000000000000000 *main.xml\n"}});
   CHECK_THROWS_WITH(read_x3p(dir + "/md5.x3p"),
                     Catch::Contains("MD5 checksum of main.xml does not match"));
-  write_zip(dir + "/size.x3p", {{"main.xml", xml}, {"bindata/data.bin", std::string(80, '\0')}});
+  testing::write_zip(dir + "/size.x3p",
+                     {{"main.xml", xml}, {"bindata/data.bin", std::string(80, '\0')}});
   CHECK_THROWS_WITH(read_x3p(dir + "/size.x3p"),
                     Catch::Contains("does not match MD5ChecksumPointData") ||
                         Catch::Contains("holds 80 bytes: expected 3380000"));
