@@ -36,9 +36,8 @@ bool same_file(int fd, const std::string& path) {
 }
 }  // namespace
 
-OutputLock::OutputLock(const std::string& dir, SourceRef where, std::string key, bool wait)
+OutputLock::OutputLock(const std::string& dir, SourceRef where, std::string option, bool wait)
     : dir_(dir), file_((fs::path(dir) / ".lock").string()) {
-  const std::string& option = key;
   for (;;) {
     std::error_code ec;
     const bool existed = fs::exists(dir_, ec);

@@ -13,11 +13,11 @@ namespace topomill {
 
 class OutputLock {
  public:
-  // Creates `dir` if needed and locks it. `where` and `key` say where the user gave the directory
-  // (the command line's --out, or a scene's [output] dir), for messages; `wait` blocks until the
-  // holder is done (a stop request still ends the wait). Throws InputError when the directory
-  // cannot be made or is busy.
-  OutputLock(const std::string& dir, SourceRef where, std::string key, bool wait);
+  // Creates `dir` if needed and locks it. `where` and `option` say where the user gave the
+  // directory (the command line's --out, or a scene's [output] dir), for messages; `wait` blocks
+  // until the holder is done (a stop request still ends the wait). Throws InputError when the
+  // directory cannot be made or is busy.
+  OutputLock(const std::string& dir, SourceRef where, std::string option, bool wait);
   ~OutputLock();
   OutputLock(const OutputLock&) = delete;
   OutputLock& operator=(const OutputLock&) = delete;
