@@ -171,6 +171,8 @@ std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOp
 
   std::vector<CaseResult> results;
   std::map<pid_t, std::size_t> running;  // pid -> case index
+  // Should this process die without stopping its cases, each is told (main.cpp).
+  setenv("TOPOMILL_STOP_WITH_PARENT", std::to_string(getpid()).c_str(), 1);
   std::size_t next = 0, finished = 0;
   auto report = [&](CaseResult& r) {
     r.rank = mpi.rank();
@@ -229,9 +231,7 @@ std::vector<CaseResult> run_cases(const std::vector<Case>& cases, const RunnerOp
         continue;
       }
       write_atomically(args_file(dir).string(), [&](std::ostream& out) { out << joined(args); });
-      // Each case in a process group of its own: a Ctrl-C reaches the sweep, which stops them;
-      // should the sweep die without doing so, the case is told (main.cpp).
-      setenv("TOPOMILL_STOP_WITH_PARENT", std::to_string(getpid()).c_str(), 1);
+      // Each case in a process group of its own: a Ctrl-C reaches the sweep, which stops them.
       running[spawn_logged("/proc/self/exe", args, log_file(dir).string(), true)] = mine[next - 1];
       continue;
     }

@@ -198,8 +198,9 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
         "the end of the workpiece surface (the tool path runs " +
             format_number(run + reach) + " mm beyond each end of the patch, at " +
             format_number(fz * teeth) +
-            " mm per revolution: three revolutions of run-in or run-out, the depth, and two an "
-            "evaluator may look beyond them); choose a smaller lambda, a larger radius, or "
+            " mm per revolution: three revolutions of run-in or run-out and the depth" +
+            (reach > 0 ? std::string(", and two an evaluator may look beyond them") : "") +
+            "); choose a smaller lambda, a larger radius, or "
             "fewer teeth or a smaller feed");
   for (double y : {y_first, y_lo, y_c, y_hi, y_last})
     L.lambda_max = std::max(L.lambda_max, std::abs(surface->inclination(y)));

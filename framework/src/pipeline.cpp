@@ -80,8 +80,9 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
     if (scene.enabled(name))
       out.deformations.emplace_back(name, make<Deformation>(scene, catalog, name));
   out.layout = make_layout(scene, *out.tool, out.surface);
-  check_memory(scene, out, threads, available_memory());
-  check_duration(scene, out, threads);
+  const EvaluationCost cost = evaluation_cost(out, threads);
+  check_memory(scene, out, cost, threads, available_memory());
+  check_duration(scene, cost, threads);
   return out;
 }
 

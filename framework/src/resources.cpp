@@ -99,12 +99,14 @@ std::uint64_t effect_samples(const Prepared& m) {
                         : static_cast<std::uint64_t>(samples);
 }
 
-MemoryEstimate estimate_memory(const Prepared& m, unsigned threads) {
+EvaluationCost evaluation_cost(const Prepared& m, unsigned threads) {
+  return m.evaluator->estimate_cost(evaluation_request(m, threads), m.layout.grid);
+}
+
+MemoryEstimate estimate_memory(const Prepared& m, const EvaluationCost& cost) {
   MemoryEstimate e;
   const Grid& g = m.layout.grid;
-  const EvaluationRequest rq = evaluation_request(m, threads);
   const double nodes = static_cast<double>(g.nx) * static_cast<double>(g.ny);
-  const EvaluationCost cost = m.evaluator->estimate_cost(rq, g);
   const double effects = static_cast<double>(effect_samples(m)) * kBytesPerSample;
   // Capped (and NaN taken as the cap) so that absurd scenes (1e12 nodes) do not overflow.
   auto bytes = [](double b) {
@@ -128,9 +130,9 @@ std::string format_bytes(double bytes) {
   return os.str();
 }
 
-void check_memory(const Scene& scene, const Prepared& m, unsigned threads,
-                  std::uint64_t available) {
-  const MemoryEstimate e = estimate_memory(m, threads);
+void check_memory(const Scene& scene, const Prepared& m, const EvaluationCost& cost,
+                  unsigned threads, std::uint64_t available) {
+  const MemoryEstimate e = estimate_memory(m, cost);
   // Leave a tenth for the program, the libraries and the allocator.
   if (static_cast<double>(e.total()) <= 0.9 * static_cast<double>(available)) return;
   const Grid& g = m.layout.grid;
@@ -165,9 +167,7 @@ void check_memory(const Scene& scene, const Prepared& m, unsigned threads,
   throw InputError(scene.table("region").where("size"), "region.size", os.str());
 }
 
-void check_duration(const Scene& scene, const Prepared& m, unsigned threads) {
-  const EvaluationRequest rq = evaluation_request(m, threads);
-  const EvaluationCost cost = m.evaluator->estimate_cost(rq, m.layout.grid);
+void check_duration(const Scene& scene, const EvaluationCost& cost, unsigned threads) {
   const double seconds = cost.seconds / std::max(1u, threads);
   if (!(seconds > 60)) return;  // also: no estimate (0)
   const std::string evaluator = scene.slot("evaluator").plugin;

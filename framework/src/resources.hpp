@@ -28,14 +28,18 @@ struct MemoryEstimate {
   std::uint64_t total() const { return grid_bytes + evaluator_bytes + effect_bytes; }
 };
 
-MemoryEstimate estimate_memory(const Prepared& m, unsigned threads);
+MemoryEstimate estimate_memory(const Prepared& m, const EvaluationCost& cost);
 
 // Throws InputError naming the key that dominates the estimate when it exceeds `available`.
-void check_memory(const Scene& scene, const Prepared& m, unsigned threads, std::uint64_t available);
+// The evaluator's cost for this preparation (asked once; both checks below use it).
+EvaluationCost evaluation_cost(const Prepared& m, unsigned threads);
+
+void check_memory(const Scene& scene, const Prepared& m, const EvaluationCost& cost,
+                  unsigned threads, std::uint64_t available);
 
 // Before a run the evaluator estimates to take over a minute, a warning with the estimate and the
 // key that drives it; one that would not end (over three years) is refused naming that key.
-void check_duration(const Scene& scene, const Prepared& m, unsigned threads);
+void check_duration(const Scene& scene, const EvaluationCost& cost, unsigned threads);
 
 std::string format_bytes(double bytes);
 

@@ -17,11 +17,12 @@ bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
-// A scene whose workpiece is `plugin` (no keys besides), found through `plugin_paths`.
+// A scene whose workpiece is `plugin` (no keys besides), found through `plugin_paths` (none when
+// `plugin_dir` is empty).
 std::string scene_with_workpiece(const std::string& name, const std::string& plugin,
                                  const std::string& plugin_dir) {
   const std::string path = testing::temp_dir(name) + ".toml";
-  std::ofstream(path) << "plugin_paths = ['" << plugin_dir << "']\n"
+  std::ofstream(path) << (plugin_dir.empty() ? "" : "plugin_paths = ['" + plugin_dir + "']\n")
                       << "[tool]\nplugin = 'ball_end_loxodrome'\nradius = 5.0\n"
                       << "[workpiece]\nplugin = '" << plugin << "'\n"
                       << "[cutting]\nspindle_speed = 4000\nfeed_per_tooth = 0.1\n"
@@ -141,11 +142,15 @@ TEST_CASE("scene plugin paths can be refused for scenes one did not write", "[pl
                                   "directories, and scene plugin paths are refused"));
     CHECK_FALSE(std::filesystem::exists(mark));
   }
-  // The same directory passed by the user is trusted.
+  // The same directory given by the user (--plugin-path) stays trusted under the refusal.
+  const auto own = scene_with_workpiece("loud_own_path", "fixture_loud", "");
   const auto trusted = run_topomill(
-      "check '" + scene + "' --no-scene-plugin-paths -P '" + fixture_dir("loud") + "'", env);
-  CHECK(trusted.exit_code == 2);  // the scene still names its paths: refused all the same
-  CHECK(run_topomill("describe fixture_loud -P '" + fixture_dir("loud") + "'", env).exit_code == 0);
+      "check '" + own + "' -v --no-scene-plugin-paths -P '" + fixture_dir("loud") + "'",
+      env + " TOPOMILL_NO_SCENE_PLUGIN_PATHS=1");
+  INFO(trusted.err);
+  CHECK(trusted.exit_code == 0);
+  CHECK(contains(trusted.err, "workpiece: fixture_loud from " + fixture_dir("loud")));
+  CHECK(std::filesystem::exists(mark));
 }
 
 TEST_CASE("a plugin named like a built-in shadows it in run, check and plugins alike",
