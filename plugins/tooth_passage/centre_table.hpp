@@ -110,6 +110,23 @@ class CentreTable {
     return {top(0), top(1)};
   }
 
+  // How far, at most, the tabulated nominal centre strays in plan from the line through p along
+  // the unit vector (ux, uy), over the whole table: on each cubic piece the distance across the
+  // line is a cubic in s whose chord is known at the ends and whose bend is at most a fourth of
+  // its largest second derivative, taken at an end (it is linear).
+  double plan_deviation(const Vec3& p, double ux, double uy) const {
+    auto across = [&](const Vec3& v) { return ux * v.y() - uy * v.x(); };
+    double worst = 0;
+    for (std::size_t i = 1; i + 2 < knots_.size(); ++i) {
+      const Cubic& c = cubic_[i];
+      const double f0 = across(c[0] - p), f1 = f0 + across(c[1] + c[2] + c[3]);
+      const double d2 =
+          std::max(std::abs(2 * across(c[2])), std::abs(2 * across(c[2]) + 6 * across(c[3])));
+      worst = std::max(worst, std::max(std::abs(f0), std::abs(f1)) + d2 / 8);
+    }
+    return worst;
+  }
+
   // Upper bounds of the nominal centre's horizontal and vertical speed (mm/s): the knots' chords,
   // with a margin for the bend between them.
   std::pair<double, double> top_speed() const {

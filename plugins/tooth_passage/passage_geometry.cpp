@@ -48,6 +48,18 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     const double k1 = lag_shape.over(0.0, 0.95 * R).k1;
     gap_rho.emplace_back(1.01 * (v * half + std::sqrt(1 + k1 * k1) * v / std::abs(omega)),
                          0.95 * R - v * half);
+    // The line from the pass's nominal start to its end in plan; the correction's plan offset at
+    // most its box's farthest corner.
+    const Vec3 a = path->nominal_centre(p, 0.0), b = path->nominal_centre(p, path->pass(p).t_end);
+    const double len = std::hypot(b.x() - a.x(), b.y() - a.y());
+    PlanLine l{a.x(), a.y(), 0.0, 0.0, INFINITY, v};
+    if (len > 0) {
+      l.ux = (b.x() - a.x()) / len, l.uy = (b.y() - a.y()) / len;
+      const double sx = std::max(std::abs(lo.x()), std::abs(hi.x()));
+      const double sy = std::max(std::abs(lo.y()), std::abs(hi.y()));
+      l.off = centre.back().plan_deviation(a, l.ux, l.uy) + std::hypot(sx, sy) + 1e-12;
+    }
+    plan_line.push_back(l);
   }
 }
 
@@ -206,7 +218,16 @@ bool PassageGeometry::turns_by(double lo, double hi, double turn) const {
 
 double PassageGeometry::next_gap(double t, double rho, double dir) const {
   const double half = 0.5 * s_.rev, w = std::abs(s_.omega);
-  if (const auto [lo, hi] = s_.gap_rho[pass_]; rho >= lo && rho <= hi) return half;
+  if (const auto [lo, hi] = s_.gap_rho[pass_]; rho <= hi) {
+    if (rho >= lo) return half;
+    // Closer in, the same with the lag's slope taken only as far out as the node can get in half
+    // a revolution (gap_rho takes it to 0.95 R, where a loxodrome's is twice its tip's), and the
+    // axis's least distance also from the pass's line.
+    const double v = s_.plan_line[pass_].speed;
+    const double k1 = s_.lag_shape.over(0.0, rho + v * half).k1;
+    const double clear = 1.01 * std::sqrt(1 + k1 * k1) * v / w;
+    if (std::max(rho - 1.01 * v * half, line_gap_) >= clear) return half;
+  }
   const Span sp = span(std::min(t, t + dir * half), std::max(t, t + dir * half));
   return sp.monotone(w) ? std::min(half, kTwoPi / sp.top(w)) : 0.0;
 }

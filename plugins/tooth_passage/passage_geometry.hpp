@@ -61,6 +61,16 @@ struct PassageSetup {
   // anywhere, so G' stays within (0, 2 omega) while the centre, at its top speed v, stays
   // farther than sqrt(1 + Psi_u^2) v / omega and within 0.95 R (the lag's slope bounded).
   std::vector<std::pair<double, double>> gap_rho;
+  // Per pass, a line in plan that the centre, corrected or not, never strays from by more than
+  // `off` (through (x, y) along the unit (ux, uy); off infinite when the pass does not move in
+  // plan), and the centre's top speed in plan. A node farther from the line than off + v / omega
+  // (times the lag's sqrt(1 + Psi_u^2)) keeps G' within (0, 2 omega) all along the pass (see
+  // gap_rho), whatever the crossing's distance: on a straight pass, every node but those within
+  // about v / omega of its line.
+  struct PlanLine {
+    double x, y, ux, uy, off, speed;
+  };
+  std::vector<PlanLine> plan_line;
   // The centre's top horizontal and vertical speed over [ta, tb] on pass p.
   std::pair<double, double> top_speed(std::size_t p, double ta, double tb) const;
 
@@ -106,7 +116,10 @@ class PassageGeometry {
         y_(y),
         rho_lo_(rho_lo),
         rho_hi_(rho_hi),
-        phase_(s.path->pass(pass).phase) {}
+        phase_(s.path->pass(pass).phase) {
+    const PassageSetup::PlanLine& l = s.plan_line[pass];
+    line_gap_ = std::abs(l.ux * (y - l.y) - l.uy * (x - l.x)) - l.off;
+  }
 
   std::size_t pass() const { return pass_; }
   double x() const { return x_; }
@@ -144,6 +157,18 @@ class PassageGeometry {
   double advance(double ta, const Probe& a, double tb, const Probe& b) const {
     const double known = s_.omega * (tb - ta) + b.lag - a.lag;
     return known + wrap(b.g - a.g - known);
+  }
+
+  // Whether the phase turns by `turn` (in magnitude, to round-off) from probe a at ta to probe b
+  // at tb (and on to c at tc), all of one tooth: advance's exact increments, so only where the
+  // axis stays in a convex region that leaves the node out over each (a span there with
+  // rho_lo > 0), and the phase monotone over all.
+  bool turned(double turn, double ta, const Probe& a, double tb, const Probe& b) const {
+    return std::abs(std::abs(advance(ta, a, tb, b)) - turn) < 1e-6;
+  }
+  bool turned(double turn, double ta, const Probe& a, double tb, const Probe& b, double tc,
+              const Probe& c) const {
+    return std::abs(std::abs(advance(ta, a, tb, b) + advance(tb, b, tc, c)) - turn) < 1e-6;
   }
 
   // A lower bound of envelope(t) whatever the correction within the pass's range: the nominal
@@ -243,7 +268,8 @@ class PassageGeometry {
   bool turns_by(double lo, double hi, double turn) const;
   // How soon after (dir > 0) or before (dir < 0) a crossing at t, rho from the axis, the same
   // tooth can cross again: half a revolution where the phase's rate stays within (0, 2 omega)
-  // there (PassageSetup::gap_rho), a whole turn at the top rate where it is monotone, and none
+  // there (PassageSetup::gap_rho; or where the axis stays far enough from the node over that
+  // half revolution: PlanLine), a whole turn at the top rate where it is monotone, and none
   // where it can turn back (near the axis the next crossing can come at once, as the node's
   // azimuth swings round). The walks end on it.
   double next_gap(double t, double rho, double dir) const;
@@ -313,6 +339,7 @@ class PassageGeometry {
   const CentreTable& table_;
   std::size_t pass_;
   double x_, y_, rho_lo_, rho_hi_, phase_;
+  double line_gap_;  // the least distance from the node to the axis along the pass (PlanLine)
 };
 
 }  // namespace topomill::plugins

@@ -270,6 +270,7 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
       double t_prev = first_root ? t_first : zoned ? zone[dir > 0] : t_b + dir * 0.5 * rev;
       bool at_root = first_root;
       double rho_prev = first.rho;  // the root's distance from the axis, when at one
+      Probe q_prev = first;         // the tooth's probe at t_prev (when at a root, or once asked)
       RiseCount rise;
       if (first_root) rise.add(first_height);
       for (int m = 1; m < 100000 && !rise.done(); ++m) {
@@ -298,7 +299,8 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
         double guess = t_prev + dir * rev, gap = 0;
         if (!at_root) {
           // From an edge: the next crossing is where the phase has turned on to its next zero.
-          const double g = geo.probe(tooth, t_prev).g;
+          q_prev = geo.probe(tooth, t_prev);
+          const double g = q_prev.g;
           gap = dir * s_.omega > 0 ? -g : g;
           gap -= kTwoPi * std::floor(gap / kTwoPi);  // the turn still to go, in [0, 2 pi)
           guess = t_prev + dir * gap / w;
@@ -309,19 +311,28 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
         // before it was found by the exact solve already: the walk goes on from there). The
         // phase turns by `need` plus whole turns from t_prev to t (both ends say so): t is the
         // next when it cannot have turned one more, which the span just proven monotone often
-        // shows by its own bound; else the finer proof (turns_by).
+        // shows by its own bound. Else the turn is found exactly: on a span proven monotone the
+        // axis stays in a convex region that leaves the node out (monotone needs rho_lo > 0), so
+        // the phase's turn across it is known from the probes at its ends (advance); where t
+        // lies beyond `far` (the phase slowed: near the axis, on the side where the node's
+        // azimuth turns against the spindle), a second span from `far` to t must be monotone too.
         const double moved = dir * (t - t_prev), need = at_root ? kTwoPi : gap;
         bool ok = false;
-        if (!std::isnan(t) && !at_root && moved < 0)
+        if (!std::isnan(t) && !at_root && moved < 0) {
           ok = true;  // behind the edge: the exact solve has it already
-        else if (!std::isnan(t) && moved > (at_root ? 0.25 * rev : 0))
-          ok = (moved <= 1.1 * rev && ahead.top(w) * moved < need + kTwoPi) ||
-               geo.turns_by(std::min(t, t_prev), std::max(t, t_prev), need);
+        } else if (!std::isnan(t) && moved > (at_root ? 0.25 * rev : 0)) {
+          if (moved <= 1.1 * rev) {
+            ok = ahead.top(w) * moved < need + kTwoPi || geo.turned(need, t_prev, q_prev, t, q);
+          } else if (geo.monotone(far, t)) {
+            const Probe q_far = geo.probe(tooth, far);
+            ok = geo.turned(need, t_prev, q_prev, far, q_far, t, q);
+          }
+        }
         if (!ok) {
           solve_revolution();
           continue;
         }
-        t_prev = t, at_root = true, rho_prev = q.rho;
+        t_prev = t, at_root = true, rho_prev = q.rho, q_prev = q;
         rise.add(take(tooth, t, &q));
       }
     }
