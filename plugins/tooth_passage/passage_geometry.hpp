@@ -339,7 +339,7 @@ class PassageGeometry {
   const CentreTable& table_;
   std::size_t pass_;
   double x_, y_, rho_lo_, rho_hi_, phase_;
-  double line_gap_;  // the least distance from the node to the axis along the pass (PlanLine)
+  double line_gap_;  // at most the axis's least distance from the node along the pass (PlanLine)
 };
 
 }  // namespace topomill::plugins
