@@ -8,6 +8,13 @@
 // rho keeps, per bin, their largest magnitudes at the bin's ends and middle, widened by 10 %.
 // That bounds them wherever they are monotone within a bin (both built-in edges everywhere; a
 // bin is R / 4096 wide); the brute-force scan (node_walk.hpp) and the tests check the rest.
+//
+// At the rim (rho -> R, the ball's equator) the slope has no bound: rho = R sin(alpha) stops
+// growing while the lag still turns with alpha. The lag itself stays finite there (a loxodrome's
+// is tan(helix) ln tan(alpha / 2)), so the table also keeps how far the lag turns across each
+// bin (the same three samples, widened by 10 %), summed: over a short piece next to the rim the
+// phase's turn is bounded by the piece's time at the other rates plus that variation, which
+// shrinks with the piece (PassageGeometry::Span::jump).
 #pragma once
 
 #include <algorithm>
@@ -31,7 +38,12 @@ class LagShape {
     const double width = R_ / kBins;
     const std::size_t size = level(kLevels);
     k1_.resize(kBins), k2_.resize(kBins), k1_.reserve(size), k2_.reserve(size);
+    turned_.assign(kBins + 1, 0.0);
     for (std::size_t b = 0; b < kBins; ++b) {
+      const double rho = static_cast<double>(b) * width;
+      const double l0 = lag(tool, rho), lm = lag(tool, rho + 0.5 * width),
+                   l1 = lag(tool, rho + width);
+      turned_[b + 1] = turned_[b] + 1.1 * (std::abs(lm - l0) + std::abs(l1 - lm));
       double m1 = 0, m2 = 0;
       for (double f : {0.0, 0.5, 1.0}) {
         const double rho = (static_cast<double>(b) + f) * width;
@@ -57,6 +69,17 @@ class LagShape {
   double slope(double sin_a, double cos_a, const ToolGeometry& tool) const {
     if (sin_a * R_ < tip_) return 0.0;
     return sin_a / cos_a * tool.lag_slope_sc(sin_a, cos_a);
+  }
+
+  // At least how far the lag turns between any two distances within [lo, hi] (infinite where
+  // the lag is: then nothing is pruned by it).
+  double variation(double lo, double hi) const {
+    const double width = R_ / kBins;
+    const auto b0 =
+        static_cast<std::size_t>(std::clamp(std::floor(lo / width), 0.0, double(kBins)));
+    const auto b1 = static_cast<std::size_t>(std::clamp(std::ceil(hi / width), 0.0, double(kBins)));
+    const double v = turned_[std::max(b0, b1)] - turned_[std::min(b0, b1)];
+    return std::isnan(v) ? INFINITY : v;
   }
 
   Bound over(double lo, double hi) const {
@@ -88,8 +111,15 @@ class LagShape {
     return slope(s, c, tool);
   }
 
+  // The lag at rho, held below the tip radius as the edge holds it.
+  double lag(const ToolGeometry& tool, double rho) const {
+    const double s = std::clamp(std::max(rho, tip_) / R_, 0.0, 1.0), c = std::sqrt(1 - s * s);
+    return tool.lag_sc(s, c);
+  }
+
   double R_, tip_;
   std::vector<double> k1_, k2_;  // the sparse table, level 0 (the bins) first
+  std::vector<double> turned_;   // turned_[b]: the lag's variation summed over bins below b
 };
 
 }  // namespace topomill::plugins

@@ -155,11 +155,16 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) 
     v = s_.top_speed(pass_, a, b).first;
     c_hi = rho_hi * v, c_lo = -c_hi;
   }
-  const LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);
+  LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);
+  double jump = 0;
+  if (!std::isfinite(k.k1)) {  // the rim: the lag's turn, not its rate (lag_shape.hpp)
+    jump = s_.lag_shape.variation(rho_lo, rho_hi);
+    k = {0, 0, true};  // the rates below without the lag; no curvature bound
+  }
   // In u = ln(rho) and the node's azimuth az, G' = omega + Psi_u u' - az' with |u'| <= v / rho
   // and -az' = (q x v) / rho^2; G'' = Psi_uu u'^2 + Psi_u u'' - az'' with |u''| <= A / rho +
   // (v / rho)^2 and |az''| <= A / rho + 2 |q x v| v / rho^3.
-  if (!(rho_lo > 0)) return {rho_lo, rho_hi, INFINITY, INFINITY, INFINITY};
+  if (!(rho_lo > 0)) return {rho_lo, rho_hi, INFINITY, INFINITY, INFINITY, jump};
   const double speed = v / rho_lo, lag = k.k1 * speed;
   // -az' within [m_lo, m_hi]: on the side of the pass where the node's azimuth turns with the
   // spindle it only adds to the rate, and only the lag can slow it.
@@ -190,7 +195,7 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) 
                                  A / rho_lo + 2 * spin * speed
                            : INFINITY;
   auto finite = [](double x) { return std::isnan(x) ? INFINITY : x; };
-  return {rho_lo, rho_hi, finite(fall), finite(rise), finite(curve)};
+  return {rho_lo, rho_hi, finite(fall), finite(rise), finite(curve), jump};
 }
 
 bool PassageGeometry::turns_by(double lo, double hi, double turn) const {
@@ -298,7 +303,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
     stack.pop_back();
     const double h = p.hi.at.t - p.lo.at.t;
     const Span sp = span(p.lo.at, p.hi.at);
-    const double reach = sp.top(w) * h;
+    const double reach = sp.turn(w, h);
     bool reachable = false;
     for (int j = first; j <= last && !reachable; ++j)
       reachable =

@@ -247,8 +247,13 @@ class PassageGeometry {
     // (w = |omega|).
     double fall, rise;
     double curve;  // |G''| <= curve; +inf where G' may jump (a knot, the tip radius)
-    bool monotone(double w) const { return fall < w; }
+    // Next to the rim the lag's rate has no bound: fall and rise then leave the lag out, and
+    // `jump` bounds how far it turns the phase over the piece (LagShape::variation); else 0.
+    double jump = 0;
+    bool monotone(double w) const { return fall < w && jump == 0; }
     double top(double w) const { return std::max(w + rise, fall - w); }  // |G'| <= top
+    // |G(b) - G(a)| over a piece of length h = b - a.
+    double turn(double w, double h) const { return top(w) * h + jump; }
   };
   // Rigorous bounds over [a, b]: from the chord of the centre's motion (less its sagitta) when no
   // correction knot lies inside, else from the nominal chord moved by the correction's box there.
