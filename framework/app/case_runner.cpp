@@ -83,7 +83,7 @@ CaseResult from_summary(const std::string& id, const fs::path& dir) {
   r.dir = dir.string();
   const json j = json::parse(slurp(dir / "summary.json"));
   r.ok = true;
-  for (const auto& [k, v] : j.at("roughness_um").items()) r.roughness[k] = v.get<double>();
+  for (const auto& [k, v] : j.at("roughness").items()) r.roughness[k] = v.at("value").get<double>();
   const json& timing = j.at("timing_s");
   r.wall_s = timing.at("total").get<double>();
   for (const auto& s : j.at("stages")) {

@@ -11,7 +11,7 @@
 #include "commands.hpp"
 #include "distribution.hpp"
 #include "io/png_chart.hpp"
-#include "io/sdf.hpp"
+#include "io/x3p.hpp"
 #include "result_table.hpp"
 
 namespace fs = std::filesystem;
@@ -66,10 +66,11 @@ int cmd_ablate(const Args& args) {
   }
   const Scene& scene = *loaded.scene;
 
-  // Every case also writes sdf, which the side-by-side maps read back.
-  std::string formats = "output.formats=[\"sdf\"";
+  // Every case also writes x3p (float64 with the grid's origin), which the side-by-side maps
+  // read back.
+  std::string formats = "output.formats=[\"x3p\"";
   for (const auto& f : scene.table("output").strings("formats"))
-    if (f != "sdf") formats += ",\"" + f + "\"";
+    if (f != "x3p") formats += ",\"" + f + "\"";
   formats += "]";
 
   std::vector<Case> cases;
@@ -126,7 +127,7 @@ int cmd_ablate(const Args& args) {
   ResultTable table;
   table.header = {"variant",     "effects",     "status",      "Sa_um",  "Sq_um",  "Sz_um",
                   "dSa_percent", "dSq_percent", "dSz_percent", "time_s", "stages", "error"};
-  std::vector<std::pair<std::string, double>> bars;
+  std::vector<std::pair<std::string, std::vector<double>>> bars;
   std::vector<std::pair<std::string, HeightMap>> maps;
   int failed = 0;
   for (std::size_t i = 0; i < results.size(); ++i) {
@@ -144,18 +145,19 @@ int cmd_ablate(const Args& args) {
     row.push_back(stage_list(r));
     row.push_back(r.error);
     table.rows.push_back(row);
-    bars.emplace_back(name, parameter(r, "Sa"));
+    bars.emplace_back(
+        name, std::vector<double>{parameter(r, "Sa"), parameter(r, "Sq"), parameter(r, "Sz")});
     if (r.ok)
-      maps.emplace_back(name, read_sdf((fs::path(r.dir) / "height_residual.sdf").string()).map);
+      maps.emplace_back(name, read_x3p((fs::path(r.dir) / "height_residual.x3p").string()).map);
     failed += r.ok ? 0 : 1;
   }
   const fs::path dir = b.out_dir;
   table.write_csv((dir / "ablation.csv").string());
   table.write_markdown((dir / "ablation.md").string());
   ChartLabels labels;
-  labels.title = "Sa per variant: " + scene.table("scene").string("name");
-  labels.y = "Sa (um)";
-  write_bar_chart((dir / "ablation.png").string(), labels, bars);
+  labels.title = "Sa, Sq, Sz per variant: " + scene.table("scene").string("name");
+  labels.y = "height parameter (µm)";
+  write_bar_chart((dir / "ablation.png").string(), labels, {"Sa", "Sq", "Sz"}, bars);
   if (!maps.empty()) write_heatmap_panels((dir / "ablation_maps.png").string(), maps);
   std::cout << table.markdown() << "\n"
             << results.size() - failed << " of " << results.size() << " variants ok; "

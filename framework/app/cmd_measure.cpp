@@ -8,7 +8,7 @@
 #include "metrology/form_removal.hpp"
 #include "metrology/gaussian_filter.hpp"
 #include "metrology/read_surface.hpp"
-#include "roughness.hpp"
+#include "roughness_report.hpp"
 
 namespace topomill::cli {
 
@@ -63,28 +63,27 @@ int cmd_measure(const Args& args) {
   const Roughness r = roughness(s.map, s.valid);
   // Finite heights can still overflow a parameter (squares of 1e300): nothing non-finite is
   // printed, in text or JSON.
-  for (const auto& [name, v] : r.reported_um())
-    if (!std::isfinite(v))
-      throw InputError(SourceRef{file}, "",
-                       name +
-                           " is not finite for these heights (their squares or slopes overflow "
-                           "double precision): expected heights and spacings of a real "
-                           "surface");
+  if (const std::string name = first_non_finite(r); !name.empty())
+    throw InputError(SourceRef{file}, "",
+                     name +
+                         " is not finite for these heights (their squares or slopes overflow "
+                         "double precision): expected heights and spacings of a real "
+                         "surface");
 
   const Grid& g = s.map.grid;
   if (json) {
-    toml::table params;
-    for (const auto& [name, v] : r.reported_um()) params.insert(name, v);
     toml::table root{{"file", file},
                      {"nx", static_cast<std::int64_t>(g.nx)},
                      {"ny", static_cast<std::int64_t>(g.ny)},
                      {"dx_mm", g.dx},
                      {"dy_mm", g.dy},
+                     {"x0_mm", g.x0},
+                     {"y0_mm", g.y0},
                      {"valid_points", static_cast<std::int64_t>(s.valid_count())},
                      {"form", form.name()},
                      {"filter_s_mm", lambda_s},
                      {"filter_l_mm", lambda_c},
-                     {"roughness_um", std::move(params)}};
+                     {"roughness", roughness_table(r)}};
     std::cout << to_json(root);
     return 0;
   }
@@ -92,9 +91,7 @@ int cmd_measure(const Args& args) {
   os.precision(6);
   os << file << ": " << g.nx << " x " << g.ny << " points (" << s.valid_count() << " valid), "
      << g.dx * 1e3 << " x " << g.dy * 1e3 << " um spacing, form " << form.name() << "\n";
-  os << "Sa  " << r.Sa * 1e3 << " um\nSq  " << r.Sq * 1e3 << " um\nSp  " << r.Sp * 1e3
-     << " um\nSv  " << r.Sv * 1e3 << " um\nSz  " << r.Sz * 1e3 << " um\nSsk " << r.Ssk << "\nSku "
-     << r.Sku << "\nSdq " << r.Sdq << "\nSdr " << r.Sdr << " %\n";
+  os << roughness_text(r, "\n", 6) << "\n";
   std::cout << os.str();
   return 0;
 }

@@ -221,6 +221,12 @@ int cmd_study(const Args& args) {
   labels.x = "evaluate stage (s)";
   labels.y = "|Sa - Sa(reference)| / Sa(reference) (%)";
   labels.log_x = labels.log_y = true;
+  // The reference has no error to plot on a log axis: its time is marked instead.
+  if (ref && ref->ok) {
+    const auto& c = cases[ref_index].columns;
+    labels.marks_x.push_back(
+        {"reference: " + c[0].second + " " + c[1].second + " mm", stage(*ref, "evaluate")});
+  }
   write_line_chart((dir / "study.png").string(), labels, list);
   std::cout << table.markdown() << "\n"
             << "reference: "

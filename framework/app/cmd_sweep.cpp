@@ -88,10 +88,25 @@ double as_number(const std::string& s) {
   }
 }
 
+// "table.key (unit)", the unit from the key's schema (the core's or the table's model's).
+std::string axis_label(const Scene& scene, const std::string& dotted) {
+  const auto dot = dotted.find('.');
+  if (dot == std::string::npos) return dotted;
+  const std::string table = dotted.substr(0, dot), key = dotted.substr(dot + 1);
+  const ParamSpec* spec = nullptr;
+  for (const auto& [name, schema] : core_schemas())
+    if (name == table) spec = schema.find(key);
+  if (!spec)
+    for (const auto& [name, st] : scene.slots)
+      if (name == table && st.model) spec = st.model->schema.find(key);
+  return spec && !spec->unit.empty() ? dotted + " (" + spec->unit + ")" : dotted;
+}
+
 // Sa against each varied key; the other keys' combinations are the series. A key with text
 // values is plotted against the values' positions.
-void plot_per_key(const std::vector<Varied>& varied, const std::vector<Case>& cases,
-                  const std::vector<CaseResult>& results, const fs::path& dir) {
+void plot_per_key(const Scene& scene, const std::vector<Varied>& varied,
+                  const std::vector<Case>& cases, const std::vector<CaseResult>& results,
+                  const fs::path& dir) {
   for (std::size_t k = 0; k < varied.size(); ++k) {
     std::map<std::string, Series> series;
     for (std::size_t i = 0; i < cases.size() && i < results.size(); ++i) {
@@ -115,8 +130,8 @@ void plot_per_key(const std::vector<Varied>& varied, const std::vector<Case>& ca
     for (auto& [name, s] : series) list.push_back(s);
     ChartLabels labels;
     labels.title = "Sa against " + varied[k].key;
-    labels.x = varied[k].key;
-    labels.y = "Sa (um)";
+    labels.x = axis_label(scene, varied[k].key);
+    labels.y = "Sa (µm)";
     write_line_chart((dir / ("sweep_" + case_id(varied[k].key) + ".png")).string(), labels, list);
   }
 }
@@ -184,7 +199,7 @@ int cmd_sweep(const Args& args) {
   const fs::path dir = b.out_dir;
   table.write_csv((dir / "sweep.csv").string());
   table.write_markdown((dir / "sweep.md").string());
-  plot_per_key(varied, cases, results, dir);
+  plot_per_key(*loaded.scene, varied, cases, results, dir);
   std::cout << table.markdown() << "\n"
             << results.size() - failed << " of " << results.size() << " cases ok; "
             << (dir / "sweep.csv").string() << "\n";

@@ -88,8 +88,8 @@ Schema output_schema() {
       .with_default(std::string());
   s.add_string_array("formats", {"csv", "gsf", "x3p", "sdf", "vts", "png"},
                      "Height-map files to write besides summary.json (raw and residual maps; png: "
-                     "a heat map of the residual)")
-      .with_default(std::vector<std::string>{"csv", "gsf", "png"});
+                     "the residual as a heat map and a shaded 3D view)")
+      .with_default(std::vector<std::string>{"csv", "gsf", "x3p", "png"});
   return s;
 }
 }  // namespace

@@ -1,5 +1,6 @@
 #include "describe.hpp"
 
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "scene.hpp"
@@ -7,9 +8,28 @@
 namespace topomill {
 
 namespace {
-// 0.3 rather than 0.29999999999999999: 15 significant digits are exact for scene values.
-constexpr auto kJsonFlags =
-    toml::json_formatter::default_flags | toml::format_flags::relaxed_float_precision;
+// JSON through nlohmann::json, whose numbers are the shortest text that reads back to the same
+// double (0.3 stays 0.3; 0.54274963... keeps all its digits): toml++'s formatter gives either 17
+// digits for every number or 6.
+nlohmann::json json_of(const toml::node& node) {
+  if (const auto* t = node.as_table()) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [k, v] : *t) out[std::string(k.str())] = json_of(v);
+    return out;
+  }
+  if (const auto* a = node.as_array()) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& v : *a) out.push_back(json_of(v));
+    return out;
+  }
+  if (const auto* d = node.as_floating_point()) return d->get();
+  if (const auto* i = node.as_integer()) return i->get();
+  if (const auto* b = node.as_boolean()) return b->get();
+  if (const auto* s = node.as_string()) return s->get();
+  std::ostringstream os;  // dates and times: their TOML text
+  node.visit([&](auto&& n) { os << n; });
+  return os.str();
+}
 
 std::string value_text(const Value& v) {
   if (const double* d = std::get_if<double>(&v)) {
@@ -112,15 +132,11 @@ std::string to_toml_text(const toml::table& table) {
 }
 
 std::string to_json(const toml::table& table) {
-  std::ostringstream os;
-  os << toml::json_formatter{table, kJsonFlags} << "\n";
-  return os.str();
+  return json_of(table).dump(4) + "\n";
 }
 
 std::string to_json(const toml::array& array) {
-  std::ostringstream os;
-  os << toml::json_formatter{array, kJsonFlags} << "\n";
-  return os.str();
+  return json_of(array).dump(4) + "\n";
 }
 
 }  // namespace topomill

@@ -253,8 +253,9 @@ RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog,
   throw_if_interrupted();
   result.layout = m.layout;
   const Layout& L = result.layout;
-  log_info("grid " + std::to_string(L.grid.nx) + " x " + std::to_string(L.grid.ny) + " nodes, " +
-           std::to_string(L.path->passes()) + " passes");
+  log_info("evaluation grid (height_raw, in plan): " + std::to_string(L.grid.nx) + " x " +
+           std::to_string(L.grid.ny) + " nodes, dx " + format_number(L.grid.dx * 1e3) + " um, dy " +
+           format_number(L.grid.dy * 1e3) + " um; " + std::to_string(L.path->passes()) + " passes");
 
   result.raw = clock.run("evaluate", [&] {
     HeightMap map(L.grid);

@@ -3,18 +3,23 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace topomill {
 
-std::map<std::string, double> Roughness::named() const {
-  return {{"Sa", Sa},   {"Sq", Sq},   {"Sp", Sp},   {"Sv", Sv},  {"Sz", Sz},
-          {"Ssk", Ssk}, {"Sku", Sku}, {"Sdq", Sdq}, {"Sdr", Sdr}};
-}
-
-std::map<std::string, double> Roughness::reported_um() const {
-  auto out = named();
-  for (const char* height : {"Sa", "Sq", "Sp", "Sv", "Sz"}) out[height] *= 1e3;
-  return out;
+std::vector<Roughness::Reported> Roughness::reported() const {
+  return {{"Sa", Sa * 1e3, "um", ""},
+          {"Sq", Sq * 1e3, "um", ""},
+          {"Sp", Sp * 1e3, "um", ""},
+          {"Sv", Sv * 1e3, "um", ""},
+          {"Sz", Sz * 1e3, "um", ""},
+          {"Ssk", Ssk, "1", ""},
+          {"Sku", Sku, "1", ""},
+          {"Sdq", Sdq, "1", "forward differences over all horizontal and vertical neighbour pairs"},
+          {"Sdr", Sdr, "%", "two triangles per cell between nodes, (nx-1)(ny-1) cells"},
+          {"Sdr_gwyddion", Sdr_gwyddion, "%",
+           "Gwyddion's: four triangles per cell about its mean height, half-cell border strips, "
+           "nx ny cells"}};
 }
 
 namespace {
@@ -24,6 +29,59 @@ double excess_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
                    double flat) {
   const double a2 = 0.25 * (b - a).cross(c - a).squaredNorm();
   return (a2 - flat * flat) / (std::sqrt(a2) + flat);
+}
+
+// Gwyddion's scheme, in excess over the flat area: the triangle from the edge (za, zb), of
+// length `along`, to the cell's centre at height zc, `across` / 2 away, has the area
+// along across / 4 sqrt(1 + ((zb - za) / along)^2 + ((za + zb - 2 zc) / across)^2).
+double excess_quarter(double za, double zb, double zc, double along, double across) {
+  const double p = (zb - za) / along, q = (za + zb - 2 * zc) / across, s = p * p + q * q;
+  return 0.25 * along * across * s / (std::sqrt(1 + s) + 1);  // sqrt(1 + s) - 1, no cancellation
+}
+
+// Excess area of the cell with corners z00 (i, j), z10 (i+1, j), z11, z01 over its flat area.
+double excess_cell(double z00, double z10, double z11, double z01, double dx, double dy) {
+  const double c = 0.25 * (z00 + z10 + z11 + z01);
+  return excess_quarter(z00, z10, c, dx, dy) + excess_quarter(z10, z11, c, dy, dx) +
+         excess_quarter(z11, z01, c, dx, dy) + excess_quarter(z01, z00, c, dy, dx);
+}
+
+double sdr_gwyddion(const HeightMap& map, const std::function<bool(std::size_t)>& ok) {
+  const Grid& g = map.grid;
+  if (g.nx < 2 || g.ny < 2) return 0.0;
+  double excess = 0, flat = 0;
+  auto cell = [&](std::size_t i0, std::size_t j0, std::size_t i1, std::size_t j1, double dx,
+                  double dy) {
+    excess += excess_cell(map.at(i0, j0), map.at(i1, j0), map.at(i1, j1), map.at(i0, j1), dx, dy);
+  };
+  for (std::size_t j = 0; j + 1 < g.ny; ++j)
+    for (std::size_t i = 0; i + 1 < g.nx; ++i)
+      if (ok(g.index(i, j)) && ok(g.index(i + 1, j)) && ok(g.index(i, j + 1)) &&
+          ok(g.index(i + 1, j + 1))) {
+        cell(i, j, i + 1, j + 1, g.dx, g.dy);
+        flat += g.dx * g.dy;
+      }
+  // Border strips: half of a cell whose outer edge repeats the border nodes' heights (the half
+  // next to the nodes: its edge along them whole, its two side triangles by half).
+  auto strip = [&](double za, double zb, double along, double across) {
+    const double c = 0.5 * (za + zb);
+    excess +=
+        excess_quarter(za, zb, c, along, across) +
+        0.5 * (excess_quarter(zb, zb, c, across, along) + excess_quarter(za, za, c, across, along));
+    flat += 0.5 * along * across;
+  };
+  for (std::size_t i = 0; i + 1 < g.nx; ++i)
+    for (std::size_t j : {std::size_t{0}, g.ny - 1})
+      if (ok(g.index(i, j)) && ok(g.index(i + 1, j)))
+        strip(map.at(i, j), map.at(i + 1, j), g.dx, g.dy);
+  for (std::size_t j = 0; j + 1 < g.ny; ++j)
+    for (std::size_t i : {std::size_t{0}, g.nx - 1})
+      if (ok(g.index(i, j)) && ok(g.index(i, j + 1)))
+        strip(map.at(i, j), map.at(i, j + 1), g.dy, g.dx);
+  for (std::size_t k :
+       {g.index(0, 0), g.index(g.nx - 1, 0), g.index(0, g.ny - 1), g.index(g.nx - 1, g.ny - 1)})
+    if (ok(k)) flat += 0.25 * g.dx * g.dy;  // corner quarters, flat
+  return flat > 0 ? 100.0 * excess / flat : 0.0;
 }
 }  // namespace
 
@@ -45,8 +103,8 @@ Roughness roughness(const HeightMap& map, const std::vector<std::uint8_t>& valid
   }
   r.Sa = m1 / n;
   r.Sq = std::sqrt(m2 / n);
-  r.Sp = hi;
-  r.Sv = -lo;
+  r.Sp = std::max(hi, 0.0);  // a flat map's mean can sit a rounding above every height
+  r.Sv = std::max(-lo, 0.0);
   r.Sz = r.Sp + r.Sv;
   r.Ssk = r.Sq > 0 ? m3 / n / (r.Sq * r.Sq * r.Sq) : 0.0;
   r.Sku = r.Sq > 0 ? m4 / n / (r.Sq * r.Sq * r.Sq * r.Sq) : 0.0;
@@ -80,6 +138,7 @@ Roughness roughness(const HeightMap& map, const std::vector<std::uint8_t>& valid
       flat += g.dx * g.dy;
     }
   r.Sdr = flat > 0 ? 100.0 * excess / flat : 0.0;
+  r.Sdr_gwyddion = sdr_gwyddion(map, ok);
   return r;
 }
 

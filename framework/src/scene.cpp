@@ -32,7 +32,7 @@ const std::vector<SlotTableSpec>& slot_table_specs() {
       {"vibration", Slot::DynamicsModel, false, nullptr, true},
       {"deflection", Slot::Deformation, false, nullptr, true},
       {"springback", Slot::Deformation, false, nullptr, true},
-      {"evaluator", Slot::Evaluator, false, "zmap", false},
+      {"evaluator", Slot::Evaluator, false, "tooth_passage", false},
   };
   return specs;
 }

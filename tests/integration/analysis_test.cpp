@@ -70,7 +70,8 @@ TEST_CASE("every reported parameter is the residual's, in the reported units", "
       }
     const double flat = static_cast<double>((g.nx - 1) * (g.ny - 1)) * g.dx * g.dy;
     const double rq = std::sqrt(sq);
-    auto reported = r.roughness.reported_um();
+    std::map<std::string, double> reported;
+    for (const auto& p : r.roughness.reported()) reported[p.name] = p.value;
     INFO("form " << form);
     CHECK(reported.at("Sa") == Approx(1e3 * sa).epsilon(1e-12));
     CHECK(reported.at("Sq") == Approx(1e3 * rq).epsilon(1e-12));

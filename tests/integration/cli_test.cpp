@@ -1,6 +1,7 @@
 // The command line as a user meets it: help, listings, check, run and its outputs.
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "support/run_command.hpp"
 #include "support/scene_header.hpp"
@@ -35,16 +36,16 @@ TEST_CASE("plugins lists every built-in model per slot, as text and JSON", "[cli
   REQUIRE(json.exit_code == 0);
   CHECK(json.out.find("\"search_path\"") != std::string::npos);
   CHECK(json.out.find("\"topography_evaluator\"") != std::string::npos);
-  CHECK(json.out.find("\"name\" : \"zmap\"") != std::string::npos);
+  CHECK(json.out.find("\"name\": \"zmap\"") != std::string::npos);
 }
 
 TEST_CASE("describe shows a model's schema and answers an unknown name with the known ones",
           "[cli]") {
   const auto r = run_topomill("describe convex_arc --json");
   REQUIRE(r.exit_code == 0);
-  CHECK(r.out.find("\"name\" : \"radius\"") != std::string::npos);
-  CHECK(r.out.find("\"unit\" : \"mm\"") != std::string::npos);
-  CHECK(r.out.find("\"required\" : true") != std::string::npos);
+  CHECK(r.out.find("\"name\": \"radius\"") != std::string::npos);
+  CHECK(r.out.find("\"unit\": \"mm\"") != std::string::npos);
+  CHECK(r.out.find("\"required\": true") != std::string::npos);
 
   const auto bad = run_topomill("describe convex_ark");
   CHECK(bad.exit_code == 2);
@@ -73,11 +74,11 @@ TEST_CASE("run writes complete outputs and a summary naming plugins and stages",
     CHECK(fs::exists(out + "/" + f));
   for (const auto& e : fs::directory_iterator(out)) CHECK(e.path().extension() != ".partial");
   const std::string summary = testing::read_file(out + "/summary.json");
-  CHECK(summary.find("\"roughness_um\"") != std::string::npos);
+  CHECK(summary.find("\"roughness\"") != std::string::npos);
   CHECK(summary.find("\"Sa\"") != std::string::npos);
-  CHECK(summary.find("libtopomill_zmap.so") != std::string::npos);
+  CHECK(summary.find("libtopomill_tooth_passage.so") != std::string::npos);
   CHECK(summary.find("\"evaluate\"") != std::string::npos);
-  CHECK(summary.find("\"effects\" : []") != std::string::npos);
+  CHECK(summary.find("\"effects\": []") != std::string::npos);
   CHECK(r.out.find("Sa ") != std::string::npos);
 }
 
@@ -104,19 +105,25 @@ TEST_CASE("measure on run's x3p output gives the run's own parameters", "[cli][m
   const auto m = run_topomill("measure '" + out + "/height_residual.x3p' --json");
   REQUIRE(m.exit_code == 0);
   const std::string summary = testing::read_file(out + "/summary.json");
-  auto sa = [](const std::string& json) {
-    const auto at = json.find("\"Sa\" : ");
-    return std::stod(json.substr(at + 7));
-  };
-  CHECK(sa(m.out) == Approx(sa(summary)).epsilon(1e-9));
+  // Every parameter: x3p holds metres, so the heights come back to a rounding (1e-16 relative).
+  const auto measured = nlohmann::json::parse(m.out).at("roughness");
+  const auto run = nlohmann::json::parse(summary).at("roughness");
+  REQUIRE(run.size() == 10);
+  for (const auto& [name, p] : run.items()) {
+    INFO(name);
+    CHECK(measured.at(name).at("value").get<double>() ==
+          Approx(p.at("value").get<double>()).epsilon(1e-12));
+    CHECK(measured.at(name).at("unit") == p.at("unit"));
+  }
 }
 
 TEST_CASE("a run that would not fit in memory is refused before any work, naming the key",
           "[cli][errors][resources]") {
   const std::string out = testing::temp_dir("memory");
   // The grid dominates: 16 x 16 nodes and the Z-map's maps do not fit in 10 KiB.
-  auto r = testing::run_topomill("run configs/examples/quick.toml -q --out '" + out + "'",
-                                 "TOPOMILL_MEMORY_LIMIT=10K");
+  auto r = testing::run_topomill(
+      "run configs/examples/quick.toml -q --set evaluator.plugin=zmap --out '" + out + "'",
+      "TOPOMILL_MEMORY_LIMIT=10K");
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("configs/examples/quick.toml:25:11: error: key 'region.spacing': the run "
                    "would need about") != std::string::npos);

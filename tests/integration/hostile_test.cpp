@@ -211,7 +211,7 @@ TEST_CASE("hostile inputs are refused with exit 2, quickly and within bounded me
        "run {dir}/bad_out.toml -q",
        quick,
        2,
-       {"bad_out.toml:32:7: error: key 'output.dir': cannot create the output directory "
+       {"bad_out.toml:34:7: error: key 'output.dir': cannot create the output directory "
         "'/dev/null/out'"}},
       // 15: devices read forever.
       {15,

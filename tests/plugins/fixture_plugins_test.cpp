@@ -170,7 +170,7 @@ TEST_CASE("a plugin named like a built-in shadows it in run, check and plugins a
                                  "/libtopomill_inclined_plane.so\n      shadowed by " + dir +
                                  "/libtopomill_inclined_plane.so"));
   const auto json = run_topomill("plugins --json -P '" + dir + "'");
-  CHECK(contains(json.out, "\"shadowed_by\" : \"" + dir + "/libtopomill_inclined_plane.so\""));
+  CHECK(contains(json.out, "\"shadowed_by\": \"" + dir + "/libtopomill_inclined_plane.so\""));
 
   const std::string used = "workpiece: inclined_plane from " + dir;
   const std::string scene = "configs/bench/flat_vertical.toml";

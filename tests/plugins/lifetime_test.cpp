@@ -46,8 +46,9 @@ TEST_CASE("resolving and preparing a scene opens only the libraries it names", "
   topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
   topomill::Scene scene = doc.resolve(catalog);
   topomill::Prepared prepared = topomill::prepare(scene, catalog);
-  for (const std::string used : {"ball_end_loxodrome", "convex_arc", "zmap"})
+  for (const std::string used : {"ball_end_loxodrome", "convex_arc", "tooth_passage"})
     CHECK(is_loaded(builtin(used)));
-  for (const std::string unused : {"ball_end_constant_lead", "concave_arc", "inclined_plane"})
+  for (const std::string unused :
+       {"ball_end_constant_lead", "concave_arc", "inclined_plane", "zmap"})
     CHECK_FALSE(is_loaded(builtin(unused)));
 }

@@ -31,7 +31,7 @@ scene=$src/sdk/template/scenes/example.toml
   || fail "describe does not show the schema"
 "$topomill" run "$scene" -q --plugin-path "$work/template" --out "$work/out1" >/dev/null \
   || fail "run with --plugin-path"
-grep -q '"library" : "'"$work"'/template/libtopomill_ball_end_worn.so"' "$work/out1/summary.json" \
+grep -q '"library": "'"$work"'/template/libtopomill_ball_end_worn.so"' "$work/out1/summary.json" \
   || fail "summary does not name the plugin's library"
 TOPOMILL_PLUGIN_PATH="$work/template" "$topomill" run "$scene" -q --out "$work/out2" >/dev/null \
   || fail "run with TOPOMILL_PLUGIN_PATH"

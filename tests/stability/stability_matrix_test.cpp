@@ -55,7 +55,7 @@ std::string table_of(const std::string& assignment) {
 }
 
 bool all_finite(const std::string& csv) {
-  const topomill::Surface s = topomill::read_surface(csv, 0.01);
+  const topomill::Surface s = topomill::read_surface(csv, 0);  // the grid from the header
   for (double z : s.map.z)
     if (!std::isfinite(z)) return false;
   return !s.map.z.empty();

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <pugixml.hpp>
 
 #include "io/csv.hpp"
@@ -65,6 +66,7 @@ TEST_CASE("x3p-2.x3p gives the agreed reference values", "[metrology][refdata]")
   CHECK(r.Sku == Approx(2.94193373526491).epsilon(1e-9));
   CHECK(r.Sdq == Approx(0.0620740474978505).epsilon(1e-9));
   CHECK(r.Sdr == Approx(0.1920252626).epsilon(1e-9));  // two triangles per cell: see roughness.hpp
+  CHECK(r.Sdr_gwyddion == Approx(0.1887367719).epsilon(1e-9));  // Gwyddion 2.62 on this file
 }
 
 TEST_CASE("the openGPS samples: validity bits, integer scaling, XML and binary alike",
@@ -87,24 +89,37 @@ TEST_CASE("every writer round-trips through its reader", "[metrology][io]") {
   Surface s = analytic(23, 17, 0.004, [](double x, double y) {
     return 1e-3 * std::sin(40 * x) * std::cos(30 * y) + 0.2;
   });
+  s.map.grid.x0 = -0.43, s.map.grid.y0 = 25.75;  // a run's origin, kept by x3p, gsf and CSV
   const std::string dir = testing::temp_dir("roundtrip");
   std::filesystem::create_directories(dir);
   write_x3p(dir + "/a.x3p", s.map);
   write_sdf(dir + "/a.sdf", s.map);
-  write_gsf(dir + "/a.gsf", s.map, "t");
+  write_gsf(dir + "/a.gsf", s.map, {"t", "a scene; tool x (radius 5)", 0});
   write_csv(dir + "/a.csv", s.map);
+  // The CSV's grid comes from its header, with or without a --spacing that agrees.
   const Surface x = read_x3p(dir + "/a.x3p"), d = read_sdf(dir + "/a.sdf"),
-                gs = read_gsf(dir + "/a.gsf"), c = read_csv(dir + "/a.csv", 0.004);
+                gs = read_gsf(dir + "/a.gsf"), c = read_csv(dir + "/a.csv", 0),
+                c2 = read_csv(dir + "/a.csv", 0.004);
+  CHECK(c.map.grid.x0 == s.map.grid.x0);
+  CHECK(c.map.grid.y0 == s.map.grid.y0);
+  CHECK(c2.map.z == c.map.z);
+  CHECK_THROWS_WITH(read_csv(dir + "/a.csv", 0.005),
+                    Catch::Contains("the file's header gives dx_mm = 0.004") &&
+                        Catch::Contains("a.csv:5), not 0.005"));
   for (const Surface* r : {&x, &d, &gs, &c}) {
     REQUIRE(r->map.grid.nx == 23);
     REQUIRE(r->map.grid.ny == 17);
     CHECK(r->map.grid.dx == Approx(0.004).epsilon(1e-6));
   }
+  for (const Surface* r : {&x, &gs, &c}) {  // the formats that carry the origin
+    CHECK(r->map.grid.x0 == Approx(s.map.grid.x0).epsilon(1e-12));
+    CHECK(r->map.grid.y0 == Approx(s.map.grid.y0).epsilon(1e-12));
+  }
   for (std::size_t i = 0; i < s.map.z.size(); ++i) {
     CHECK(x.map.z[i] == Approx(s.map.z[i]).epsilon(1e-15));  // float64, through metres
     CHECK(d.map.z[i] == Approx(s.map.z[i]).epsilon(1e-15));
     CHECK(gs.map.z[i] == Approx(s.map.z[i]).epsilon(1e-7));  // float32
-    CHECK(c.map.z[i] == Approx(s.map.z[i]).epsilon(1e-8));   // 9 digits
+    CHECK(c.map.z[i] == Approx(s.map.z[i]).epsilon(1e-15));  // shortest exact text, in um
   }
   write_vts(dir + "/a.vts", s.map);
   pugi::xml_document vts;
@@ -351,7 +366,14 @@ TEST_CASE("measure reports the parameters and refuses bad files with exit code 2
   const auto ok =
       testing::run_topomill("measure '" + refdata("surfacetopography/sdf-1.sdf") + "' --json");
   REQUIRE(ok.exit_code == 0);
-  CHECK(ok.out.find("\"Sa\" : 0.0115801") != std::string::npos);  // um
+  const auto j = nlohmann::json::parse(ok.out).at("roughness");
+  // The reference values (refdata README), in um, round-trip exact to 13 digits.
+  CHECK(j.at("Sa").at("value").get<double>() == Approx(1.15801275510204e-2).epsilon(1e-12));
+  CHECK(j.at("Sa").at("unit") == "um");
+  CHECK(j.at("Ssk").at("value").get<double>() == Approx(-0.64304606303356).epsilon(1e-12));
+  CHECK(j.at("Ssk").at("unit") == "1");
+  CHECK(j.at("Sdr").at("unit") == "%");
+  CHECK(j.at("Sdr_gwyddion").at("method").get<std::string>().find("Gwyddion") == 0);
   const auto bad = testing::run_topomill("measure '" + refdata("surfacetopography/sdf-1.sdf") +
                                          "' --form poly:0");
   CHECK(bad.exit_code == 2);

@@ -52,7 +52,8 @@ TEST_CASE("a sine surface has Sa = 2A/pi, Sq = A/sqrt2, Sku = 1.5, Ssk = 0", "[r
             .epsilon(5e-4));
 }
 
-TEST_CASE("a tilted plane's developed area ratio is sqrt(1 + p^2 + q^2) - 1", "[roughness]") {
+TEST_CASE("a tilted plane's developed area ratio is sqrt(1 + p^2 + q^2) - 1, and Gwyddion's",
+          "[roughness]") {
   Grid g;
   g.nx = 20, g.ny = 30, g.dx = 0.5, g.dy = 0.25;
   HeightMap m(g);
@@ -61,4 +62,12 @@ TEST_CASE("a tilted plane's developed area ratio is sqrt(1 + p^2 + q^2) - 1", "[
     for (std::size_t i = 0; i < g.nx; ++i) m.at(i, j) = p * g.x(i) + q * g.y(j);
   const auto r = topomill::roughness(m);
   CHECK(r.Sdr == Approx(100 * (std::sqrt(1 + p * p + q * q) - 1)).epsilon(1e-10));
+  // Gwyddion's scheme covers nx ny cells around the nodes: the (nx-1)(ny-1) cells between
+  // nodes lie in the plane; the half-cell strips beyond the border rows carry the rows' heights
+  // outwards, so they tilt along the border only (sqrt(1 + p^2) along x, sqrt(1 + q^2) along y);
+  // the four corner quarters are flat.
+  const double nx = g.nx, ny = g.ny;
+  const double area = (nx - 1) * (ny - 1) * std::sqrt(1 + p * p + q * q) +
+                      (nx - 1) * std::sqrt(1 + p * p) + (ny - 1) * std::sqrt(1 + q * q) + 1;
+  CHECK(r.Sdr_gwyddion == Approx(100 * (area / (nx * ny) - 1)).epsilon(1e-10));
 }

@@ -32,12 +32,12 @@ PluginCatalog builtin_catalog() {
 }
 }  // namespace
 
-TEST_CASE("defaults are filled in and the evaluator defaults to zmap", "[scene]") {
+TEST_CASE("defaults are filled in and the evaluator defaults to tooth_passage", "[scene]") {
   auto catalog = builtin_catalog();
   auto scene = SceneDocument::parse_string(kBase, "base.toml").resolve(catalog);
   CHECK(scene.slot("tool").params.integer("teeth") == 2);
   CHECK(scene.slot("tool").params.number("helix_angle") == 30.0);
-  CHECK(scene.slot("evaluator").plugin == "zmap");
+  CHECK(scene.slot("evaluator").plugin == "tooth_passage");
   CHECK(scene.table("cutting").string("spindle_direction") == "cw");
   CHECK(scene.enabled_effects().empty());
   CHECK(scene.slot("force").model == nullptr);

@@ -1,7 +1,9 @@
 #include "io/csv.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "io/atomic_file.hpp"
@@ -19,9 +21,32 @@ Surface read_csv(const std::string& path, double spacing) {
   std::size_t nx = 0, ny = 0;
   std::string line;
   int line_no = 0;
+  // The header's grid: key -> (value, line).
+  std::map<std::string, std::pair<double, int>> header;
   while (std::getline(in, line)) {
     ++line_no;
-    if (line.empty() || line[0] == '#') continue;
+    if (!line.empty() && line[0] == '#') {
+      std::istringstream h(line.substr(1));
+      std::string key, eq, value;
+      if (h >> key >> eq >> value && eq == "=" &&
+          (key == "x0_mm" || key == "y0_mm" || key == "dx_mm" || key == "dy_mm")) {
+        std::size_t used = 0;
+        double v = NAN;
+        try {
+          v = std::stod(value, &used);
+        } catch (...) {
+        }
+        const bool step = key[0] == 'd';
+        if (used != value.size() || !std::isfinite(v) || (step && !(v > 0)) || std::abs(v) > 1e6)
+          throw InputError(SourceRef{path, line_no, 1}, key,
+                           "expected " +
+                               std::string(step ? "a spacing above 0" : "a finite coordinate") +
+                               " in mm (at most 1e6), got '" + value + "'");
+        header[key] = {v, line_no};
+      }
+      continue;
+    }
+    if (line.empty()) continue;
     std::stringstream cells(line);
     std::string cell;
     std::size_t count = 0;
@@ -61,17 +86,51 @@ Surface read_csv(const std::string& path, double spacing) {
   s.source = path;
   Grid g;
   g.nx = nx, g.ny = ny, g.dx = spacing, g.dy = spacing;
+  auto from_header = [&](const char* key, double& target) {
+    const auto it = header.find(key);
+    if (it == header.end()) return;
+    if (spacing > 0 && key[0] == 'd' && std::abs(it->second.first - spacing) > 1e-9 * spacing)
+      throw InputError(SourceRef{"command line"}, "--spacing",
+                       "the file's header gives " + std::string(key) + " = " +
+                           format_number(it->second.first) + " (" + path + ":" +
+                           std::to_string(it->second.second) + "), not " + format_number(spacing) +
+                           ": leave --spacing out to use the file's grid");
+    target = it->second.first;
+  };
+  from_header("dx_mm", g.dx), from_header("dy_mm", g.dy);
+  from_header("x0_mm", g.x0), from_header("y0_mm", g.y0);
+  if (!(g.dx > 0 && g.dy > 0))
+    throw InputError(SourceRef{path}, "--spacing",
+                     "the file has no grid header (# dx_mm = ..., # dy_mm = ...): give the node "
+                     "spacing in mm");
   s.map = HeightMap(g);
   s.map.z = std::move(z);
   return s;
 }
 
-void write_csv(const std::string& path, const HeightMap& map) {
+void write_csv(const std::string& path, const HeightMap& map, const FileInfo& info) {
+  const Grid& g = map.grid;
   write_atomically(path, [&](std::ostream& out) {
-    out.precision(9);
-    for (std::size_t j = 0; j < map.grid.ny; ++j) {
-      for (std::size_t i = 0; i < map.grid.nx; ++i) out << (i ? "," : "") << map.at(i, j) * 1e3;
-      out << '\n';
+    auto exact = [](double v) {  // the shortest text that reads back to v
+      char buf[32];
+      const auto r = std::to_chars(buf, buf + sizeof buf, v);
+      return std::string(buf, r.ptr);
+    };
+    out << "# " << (info.title.empty() ? "height map" : info.title) << ", written by "
+        << file_creator() << " at " << iso8601_utc(created_time(info)) << "\n";
+    if (!info.description.empty()) out << "# " << info.description << "\n";
+    out << "# heights in um; row j at y = y0_mm + j dy_mm, column i at x = x0_mm + i dx_mm\n"
+        << "# x0_mm = " << exact(g.x0) << "\n# y0_mm = " << exact(g.y0)
+        << "\n# dx_mm = " << exact(g.dx) << "\n# dy_mm = " << exact(g.dy) << "\n";
+    std::string row;
+    for (std::size_t j = 0; j < g.ny; ++j) {
+      row.clear();
+      for (std::size_t i = 0; i < g.nx; ++i) {
+        if (i) row += ',';
+        row += exact(map.at(i, j) * 1e3);
+      }
+      row += '\n';
+      out << row;
     }
   });
 }

@@ -13,6 +13,13 @@
 namespace topomill {
 
 namespace {
+
+// A header value on one line: line breaks and NULs would end the header or the key.
+std::string one_line(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r' || c == '\0') c = ' ';
+  return text;
+}
 constexpr const char* kMagic = "Gwyddion Simple Field 1.0\n";
 [[noreturn]] void fail(const std::string& path, const std::string& why) {
   throw InputError(SourceRef{path}, "", why);
@@ -82,14 +89,17 @@ Surface read_gsf(const std::string& path) {
   return s;
 }
 
-void write_gsf(const std::string& path, const HeightMap& map, const std::string& title) {
+void write_gsf(const std::string& path, const HeightMap& map, const FileInfo& info) {
   const Grid& g = map.grid;
   write_atomically(path, [&](std::ostream& out) {
     std::ostringstream h;
     h.precision(12);
     h << kMagic << "XRes = " << g.nx << "\nYRes = " << g.ny << "\nXReal = " << g.dx * g.nx * 1e-3
       << "\nYReal = " << g.dy * g.ny * 1e-3 << "\nXOffset = " << g.x0 * 1e-3
-      << "\nYOffset = " << g.y0 * 1e-3 << "\nXYUnits = m\nZUnits = m\nTitle = " << title << "\n";
+      << "\nYOffset = " << g.y0 * 1e-3 << "\nXYUnits = m\nZUnits = m\nTitle = "
+      << one_line(info.title.empty() ? "height" : info.title) << "\nCreator = " << file_creator()
+      << "\nDate = " << iso8601_utc(created_time(info)) << "\n";
+    if (!info.description.empty()) h << "Scene = " << one_line(info.description) << "\n";
     std::string header = h.str();
     header.append(4 - header.size() % 4, '\0');  // 1 to 4 NULs, data on a 4-byte boundary
     out.write(header.data(), static_cast<std::streamsize>(header.size()));

@@ -5,11 +5,14 @@
 
 #include <string>
 
+#include "io/file_info.hpp"
 #include "metrology/surface.hpp"
 
 namespace topomill {
 
 Surface read_gsf(const std::string& path);
-void write_gsf(const std::string& path, const HeightMap& map_mm, const std::string& title);
+// Gwyddion Simple Field: float32 metres; Title, and Creator, Date and Scene as extra header keys
+// (Gwyddion keeps them as the channel's metadata).
+void write_gsf(const std::string& path, const HeightMap& map_mm, const FileInfo& info = {});
 
 }  // namespace topomill

@@ -1,113 +1,16 @@
 #include "io/png_chart.hpp"
 
-#include <cairo.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
 
-#include "io/atomic_file.hpp"
+#include "io/cairo_canvas.hpp"
 
 namespace topomill {
 
 namespace {
-
-using Surface = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
-using Context = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
-
-struct Canvas {
-  Surface surface;
-  Context cr;
-  Canvas(int w, int h)
-      : surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h), cairo_surface_destroy),
-        cr(cairo_create(surface.get()), cairo_destroy) {
-    cairo_set_source_rgb(cr.get(), 1, 1, 1);
-    cairo_paint(cr.get());
-    cairo_select_font_face(cr.get(), "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL,
-                           CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cr.get(), 13);
-    cairo_set_source_rgb(cr.get(), 0, 0, 0);
-  }
-  cairo_t* operator*() const { return cr.get(); }
-
-  // Text anchored at (x, y): ax, ay in [0, 1] pick which point of its box sits there.
-  void text(double x, double y, const std::string& s, double ax = 0, double ay = 0,
-            bool vertical = false) const {
-    cairo_text_extents_t e;
-    cairo_text_extents(cr.get(), s.c_str(), &e);
-    cairo_save(cr.get());
-    cairo_translate(cr.get(), x, y);
-    if (vertical) cairo_rotate(cr.get(), -M_PI / 2);
-    cairo_move_to(cr.get(), -e.x_advance * ax, e.height * (1 - ay));
-    cairo_show_text(cr.get(), s.c_str());
-    cairo_restore(cr.get());
-  }
-
-  void write(const std::string& path) const {
-    cairo_surface_flush(surface.get());
-    write_atomically_to(path, [&](const std::string& tmp) {
-      if (cairo_surface_write_to_png(surface.get(), tmp.c_str()) != CAIRO_STATUS_SUCCESS)
-        throw std::runtime_error("cannot write PNG '" + path + "'");
-    });
-  }
-};
-
-// Qualitative palette (Okabe-Ito), readable by colour-blind viewers.
-void palette(cairo_t* cr, std::size_t i) {
-  static const double c[][3] = {{0.00, 0.45, 0.70}, {0.84, 0.37, 0.00}, {0.00, 0.62, 0.45},
-                                {0.80, 0.47, 0.65}, {0.90, 0.62, 0.00}, {0.34, 0.71, 0.91},
-                                {0.94, 0.89, 0.26}, {0.0, 0.0, 0.0}};
-  const auto& k = c[i % 8];
-  cairo_set_source_rgb(cr, k[0], k[1], k[2]);
-}
-
-// Viridis control points, as in the single heat map.
-void viridis(double t, double rgb[3]) {
-  static const double stops[][3] = {
-      {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
-  t = std::clamp(t, 0.0, 1.0) * 4.0;
-  const int k = std::min(3, static_cast<int>(t));
-  const double w = t - k;
-  for (int i = 0; i < 3; ++i) rgb[i] = ((1 - w) * stops[k][i] + w * stops[k + 1][i]) / 255.0;
-}
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
-
-// Ticks: 1-2-5 steps on a linear axis, powers of ten (with 2 and 5 if few) on a log axis.
-std::vector<double> ticks(double lo, double hi, bool log) {
-  std::vector<double> out;
-  if (log) {
-    for (double p = std::floor(std::log10(lo)); p <= std::ceil(std::log10(hi)); ++p)
-      for (double m : {1.0, 2.0, 5.0}) {
-        const double v = m * std::pow(10.0, p);
-        if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) out.push_back(v);
-      }
-    if (out.size() > 9) {  // many decades: powers of ten only
-      std::vector<double> decades;
-      for (double v : out)
-        if (std::abs(std::log10(v) - std::round(std::log10(v))) < 1e-9) decades.push_back(v);
-      out = decades;
-    }
-    return out;
-  }
-  const double raw = (hi - lo) / 5;
-  const double p = std::pow(10.0, std::floor(std::log10(raw)));
-  double step = 10 * p;
-  for (double m : {1.0, 2.0, 5.0})
-    if (m * p >= raw) {
-      step = m * p;
-      break;
-    }
-  for (double v = std::ceil(lo / step) * step; v <= hi + step * 1e-9; v += step)
-    out.push_back(std::abs(v) < step * 1e-9 ? 0.0 : v);
-  return out;
-}
 
 struct Axis {
   double lo, hi;
@@ -177,14 +80,26 @@ void write_line_chart(const std::string& path, const ChartLabels& lab,
     for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i)
       if (std::isfinite(s.x[i]) && std::isfinite(s.y[i]))
         xs.push_back(s.x[i]), ys.push_back(s.y[i]);
+  for (const auto& [name, v] : lab.marks_x)
+    if (std::isfinite(v)) xs.push_back(v);
   const auto [xl, xh] = range(xs, lab.log_x);
   const auto [yl, yh] = range(ys, lab.log_y);
-  const bool legend = series.size() > 1;
+  const bool legend = !series.empty();
   const Axis x{xl, xh, lab.log_x, 80, legend ? w - 390.0 : w - 30.0};
   const Axis y{yl, yh, lab.log_y, h - 60.0, 40};
   frame(cv, lab, x, y, w, h);
   cairo_rectangle(cr, x.a, y.b, x.b - x.a, y.a - y.b);
   cairo_clip(cr);
+  for (const auto& [name, v] : lab.marks_x) {
+    if (!std::isfinite(v) || (lab.log_x && v <= 0)) continue;
+    const double dash[] = {6, 4};
+    cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
+    cairo_set_line_width(cr, 1.2);
+    cairo_set_dash(cr, dash, 2, 0);
+    cairo_move_to(cr, x.map(v), y.a), cairo_line_to(cr, x.map(v), y.b), cairo_stroke(cr);
+    cairo_set_dash(cr, nullptr, 0, 0);
+    cv.text(x.map(v) + 4, y.b + 6, name, 0, 0);
+  }
   auto usable = [&](double vx, double vy) {
     return std::isfinite(vx) && std::isfinite(vy) && (!lab.log_x || vx > 0) &&
            (!lab.log_y || vy > 0);
@@ -226,16 +141,19 @@ void write_line_chart(const std::string& path, const ChartLabels& lab,
 }
 
 void write_bar_chart(const std::string& path, const ChartLabels& lab,
-                     const std::vector<std::pair<std::string, double>>& bars) {
-  const int w = std::max(480, 90 + 110 * static_cast<int>(bars.size())), h = 480;
+                     const std::vector<std::string>& series,
+                     const std::vector<std::pair<std::string, std::vector<double>>>& groups) {
+  const std::size_t per = std::max<std::size_t>(1, series.size());
+  const int w = std::max(560, 230 + static_cast<int>(groups.size() * (40 + 46 * per))), h = 500;
   Canvas cv(w, h);
   cairo_t* cr = *cv;
   double top = 0;
-  for (const auto& b : bars)
-    if (std::isfinite(b.second)) top = std::max(top, b.second);
+  for (const auto& g : groups)
+    for (double v : g.second)
+      if (std::isfinite(v)) top = std::max(top, v);
   const Axis y{0, top > 0 ? top * 1.15 : 1, false, h - 90.0, 40};
-  const Axis x{0, 1, false, 80, w - 20.0};
-  // Frame and y ticks only: the x axis carries the bar labels.
+  const Axis x{0, 1, false, 80, w - 150.0};
+  // Frame and y ticks only: the x axis carries the group labels.
   cairo_set_line_width(cr, 1);
   cairo_rectangle(cr, x.a, y.b, x.b - x.a, y.a - y.b);
   cairo_stroke(cr);
@@ -249,32 +167,47 @@ void write_bar_chart(const std::string& path, const ChartLabels& lab,
   cairo_set_font_size(cr, 15);
   cv.text(w / 2.0, 10, lab.title, 0.5, 0);
   cairo_set_font_size(cr, 13);
-  const double slot = (x.b - x.a) / std::max<std::size_t>(1, bars.size());
-  for (std::size_t k = 0; k < bars.size(); ++k) {
+  const double slot = (x.b - x.a) / std::max<std::size_t>(1, groups.size());
+  const double bar = slot * 0.8 / per;
+  for (std::size_t k = 0; k < groups.size(); ++k) {
     const double cx = x.a + slot * (k + 0.5);
     cairo_set_source_rgb(cr, 0, 0, 0);
     // A long label shrinks to its slot.
     cairo_text_extents_t e;
-    cairo_text_extents(cr, bars[k].first.c_str(), &e);
+    cairo_text_extents(cr, groups[k].first.c_str(), &e);
     cairo_set_font_size(cr, std::min(13.0, 13.0 * slot * 0.95 / std::max(1.0, e.x_advance)));
-    cv.text(cx, y.a + 8, bars[k].first, 0.5, 0);
-    cairo_set_font_size(cr, 13);
-    if (!std::isfinite(bars[k].second)) {
-      cv.text(cx, y.a - 20, "failed", 0.5, 0.5);
-      continue;
+    cv.text(cx, y.a + 8, groups[k].first, 0.5, 0);
+    cairo_set_font_size(cr, 11);
+    for (std::size_t s = 0; s < groups[k].second.size() && s < per; ++s) {
+      const double v = groups[k].second[s], bx = cx - slot * 0.4 + bar * s;
+      if (!std::isfinite(v)) {
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        cv.text(bx + bar / 2, y.a - 20, "failed", 0.5, 0.5, true);
+        continue;
+      }
+      palette(cr, s);
+      const double top_px = y.map(v);
+      cairo_rectangle(cr, bx + 1, top_px, bar - 2, y.a - top_px);
+      cairo_fill(cr);
+      cairo_set_source_rgb(cr, 0, 0, 0);
+      cv.text(bx + bar / 2, top_px - 4, number(v), 0.5, 1);
     }
-    palette(cr, k);
-    const double top_px = y.map(bars[k].second);
-    cairo_rectangle(cr, cx - slot * 0.35, top_px, slot * 0.7, y.a - top_px);
+    cairo_set_font_size(cr, 13);
+  }
+  for (std::size_t s = 0; s < series.size(); ++s) {
+    const double ly = 50 + 22.0 * s;
+    palette(cr, s);
+    cairo_rectangle(cr, w - 135, ly, 14, 14);
     cairo_fill(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
-    cv.text(cx, top_px - 4, number(bars[k].second), 0.5, 1);
+    cv.text(w - 115, ly + 7, series[s], 0, 0.5);
   }
   cv.write(path);
 }
 
 void write_heatmap_panels(const std::string& path,
-                          const std::vector<std::pair<std::string, HeightMap>>& panels) {
+                          const std::vector<std::pair<std::string, HeightMap>>& panels,
+                          const std::string& x_label, const std::string& y_label) {
   if (panels.empty()) throw std::invalid_argument("no heat maps to draw");
   // Each map about its own mean: the variants' textures compare on one scale even when an
   // effect lifts the whole surface (springback).
@@ -289,41 +222,38 @@ void write_heatmap_panels(const std::string& path,
       if (std::isfinite(z))
         lo = std::min(lo, (z - mean[k]) * 1e3), hi = std::max(hi, (z - mean[k]) * 1e3);
   }
-  if (!(hi > lo)) hi = lo + 1;
-  const int side = 220, gap = 20, top = 40, bar = 130;
-  const int w = gap + static_cast<int>(panels.size()) * (side + gap) + bar, h = top + side + 40;
+  if (!(hi > lo)) lo = std::isfinite(lo) ? lo - 0.5 : -0.5, hi = lo + 1;
+  const int side = 240, gap = 70, left = 70, top = 50, bar = 150;
+  const int w = left + static_cast<int>(panels.size()) * (side + gap) - gap + bar,
+            h = top + side + 70;
   Canvas cv(w, h);
   cairo_t* cr = *cv;
   for (std::size_t k = 0; k < panels.size(); ++k) {
     const HeightMap& m = panels[k].second;
-    const int x0 = gap + static_cast<int>(k) * (side + gap);
-    const double cell_w = static_cast<double>(side) / m.grid.nx,
-                 cell_h = static_cast<double>(side) / m.grid.ny;
-    for (std::size_t j = 0; j < m.grid.ny; ++j)
-      for (std::size_t i = 0; i < m.grid.nx; ++i) {
-        double rgb[3];
-        viridis(((m.at(i, j) - mean[k]) * 1e3 - lo) / (hi - lo), rgb);
-        cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
-        // s grows upwards, as on the single heat map.
-        cairo_rectangle(cr, x0 + i * cell_w, top + side - (j + 1) * cell_h, cell_w + 0.5,
-                        cell_h + 0.5);
-        cairo_fill(cr);
-      }
+    const Grid& g = m.grid;
+    const double px0 = left + static_cast<double>(k) * (side + gap);
+    const auto image = map_image(m, mean[k], 1e3, lo, hi);
+    draw_image(cr, image.get(), px0, top, side, side);
     cairo_set_source_rgb(cr, 0, 0, 0);
-    cv.text(x0 + side / 2.0, top - 22, panels[k].first, 0.5, 0);
+    cairo_set_line_width(cr, 1);
+    cairo_rectangle(cr, px0, top, side, side);
+    cairo_stroke(cr);
+    const double xw = std::max(1e-12, (g.nx - 1) * g.dx), yw = std::max(1e-12, (g.ny - 1) * g.dy);
+    for (double v : ticks(g.x0, g.x0 + xw, false)) {
+      const double px = px0 + (v - g.x0) / xw * side;
+      cairo_move_to(cr, px, top + side), cairo_line_to(cr, px, top + side + 4), cairo_stroke(cr);
+      cv.text(px, top + side + 6, number(v), 0.5, 0);
+    }
+    for (double v : ticks(g.y0, g.y0 + yw, false)) {
+      const double py = top + side - (v - g.y0) / yw * side;
+      cairo_move_to(cr, px0 - 4, py), cairo_line_to(cr, px0, py), cairo_stroke(cr);
+      cv.text(px0 - 6, py, number(v), 1, 0.5);
+    }
+    cv.text(px0 + side / 2.0, top + side + 26, x_label, 0.5, 0);
+    cv.text(px0 + side / 2.0, top - 12, panels[k].first, 0.5, 1);
   }
-  const int bx = w - bar + 10;
-  for (int py = 0; py < side; ++py) {
-    double rgb[3];
-    viridis(1.0 - py / double(side - 1), rgb);
-    cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
-    cairo_rectangle(cr, bx, top + py, 16, 1);
-    cairo_fill(cr);
-  }
-  cairo_set_source_rgb(cr, 0, 0, 0);
-  cv.text(bx + 20, top, number(hi), 0, 0.5);
-  cv.text(bx + 20, top + side, number(lo), 0, 0.5);
-  cv.text(bx, top + side + 14, "h - mean (um)", 0, 0);
+  cv.text(14, top + side / 2.0, y_label, 0.5, 0, true);
+  colour_bar(cv, w - bar + 20, top, 18, side, lo, hi, "h - mean (µm)");
   cv.write(path);
 }
 

@@ -1,6 +1,8 @@
 #include "io/run_outputs.hpp"
 
+#include <charconv>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <sstream>
 
@@ -11,10 +13,12 @@
 #include "io/csv.hpp"
 #include "io/gsf.hpp"
 #include "io/png_heatmap.hpp"
+#include "io/png_surface3d.hpp"
 #include "io/sdf.hpp"
 #include "io/vts.hpp"
 #include "io/x3p.hpp"
 #include "log.hpp"
+#include "roughness_report.hpp"
 #include "topomill/version.hpp"
 
 namespace fs = std::filesystem;
@@ -32,11 +36,44 @@ toml::table grid_table(const Grid& g) {
                      {"y0_mm", g.y0}};
 }
 
-// Roughness in micrometres (heights), dimensionless (Ssk, Sku, Sdq) and percent (Sdr).
-toml::table roughness_table(const Roughness& r) {
-  toml::table t;
-  for (const auto& [name, v] : r.reported_um()) t.insert(name, v);
-  return t;
+// A scene value as a reader writes it: 0.3 (the shortest exact text, not 0.29999999999999999),
+// cw (no quotes), [0.86, 0.86].
+std::string value_text(const toml::node& v) {
+  if (const auto* d = v.as_floating_point()) {
+    char buf[32];
+    return std::string(buf, std::to_chars(buf, buf + sizeof buf, d->get()).ptr);
+  }
+  if (const auto* text = v.as_string()) return text->get();
+  if (const auto* a = v.as_array()) {
+    std::string out = "[";
+    for (const auto& e : *a) out += (out.size() > 1 ? ", " : "") + value_text(e);
+    return out + "]";
+  }
+  std::ostringstream os;
+  v.visit([&](auto&& n) { os << n; });
+  return os.str();
+}
+
+// The scene in one line for the files' comments: its name, then each model and the cutting
+// and region keys as resolved ("tool ball_end_loxodrome (radius 5, teeth 2, ...); ...").
+std::string describe_scene(const Scene& scene) {
+  const toml::table resolved = scene.to_toml();
+  std::ostringstream os;
+  os << scene.table("scene").string("name");
+  for (const char* name : {"tool", "workpiece", "cutting", "path", "region", "evaluator", "force",
+                           "vibration", "deflection", "springback"}) {
+    const toml::table* t = resolved[name].as_table();
+    if (!t) continue;
+    os << "; " << name;
+    if (const auto* plugin = t->get_as<std::string>("plugin")) os << " " << plugin->get();
+    std::string keys;
+    for (const auto& [k, v] : *t) {
+      if (k.str() == "plugin" || v.is_table() || v.is_array_of_tables()) continue;
+      keys += (keys.empty() ? "" : ", ") + std::string(k.str()) + " " + value_text(v);
+    }
+    if (!keys.empty()) os << " (" << keys << ")";
+  }
+  return os.str();
 }
 
 }  // namespace
@@ -62,27 +99,41 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
     files.push_back(name);
     return (staging / name).string();
   };
+  // Every file names its map, the program, the time and the scene.
+  const std::time_t now = std::time(nullptr);
+  const std::string described = describe_scene(scene);
+  const FileInfo raw_info{"topomill raw height (in plan, the evaluation grid)", described, now};
+  const FileInfo residual_info{std::string("topomill residual height (") +
+                                   (unrolled ? "along the surface" : "in plan") + ", form " +
+                                   scene.table("analysis").string("form") + " removed)",
+                               described, now};
   for (const auto& format : scene.table("output").strings("formats")) {
     throw_if_interrupted();  // between files: a stop request is honoured while writing too
     if (format == "csv") {
-      write_csv(path("height_raw.csv"), result.raw);
-      write_csv(path("height_residual.csv"), result.residual);
+      write_csv(path("height_raw.csv"), result.raw, raw_info);
+      write_csv(path("height_residual.csv"), result.residual, residual_info);
     } else if (format == "gsf") {
-      write_gsf(path("height_raw.gsf"), result.raw, "topomill raw height");
-      write_gsf(path("height_residual.gsf"), result.residual, "topomill residual height");
+      write_gsf(path("height_raw.gsf"), result.raw, raw_info);
+      write_gsf(path("height_residual.gsf"), result.residual, residual_info);
     } else if (format == "x3p") {
-      write_x3p(path("height_raw.x3p"), result.raw);
-      write_x3p(path("height_residual.x3p"), result.residual);
+      write_x3p(path("height_raw.x3p"), result.raw, raw_info);
+      write_x3p(path("height_residual.x3p"), result.residual, residual_info);
     } else if (format == "sdf") {
-      write_sdf(path("height_raw.sdf"), result.raw);
-      write_sdf(path("height_residual.sdf"), result.residual);
+      write_sdf(path("height_raw.sdf"), result.raw, raw_info);
+      write_sdf(path("height_residual.sdf"), result.residual, residual_info);
     } else if (format == "vts") {
       write_vts(path("height_raw.vts"), result.raw);
       write_vts(path("height_residual.vts"), result.residual);
     } else if (format == "png") {
       HeatmapLabels labels;
       if (!unrolled) labels.y = "y (mm)";
+      char sa[64];
+      std::snprintf(sa, sizeof sa, "   Sa %.4g µm", result.roughness.Sa * 1e3);
+      labels.title = scene.table("scene").string("name") + sa;
+      labels.z = "h (µm), form " + scene.table("analysis").string("form") + " removed";
       write_png_heatmap(path("height_residual.png"), result.residual, labels);
+      write_png_surface3d(path("height_residual_3d.png"), result.residual, labels.title, labels.x,
+                          labels.y);
     }
   }
   // What would make a move fail is refused before anything visible changes.
@@ -143,7 +194,7 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
                            {"residual", grid_table(result.residual.grid)},
                            {"form", scene.table("analysis").string("form")},
                            {"passes", static_cast<std::int64_t>(result.layout.path->passes())}}},
-      {"roughness_um", roughness_table(result.roughness)},
+      {"roughness", roughness_table(result.roughness)},
       {"effects_detail", toml::table{{"time_step_s", result.dynamics_step},
                                      {"peak_force_N", result.peak_force},
                                      {"peak_correction_mm", result.peak_correction}}},
@@ -159,12 +210,12 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
   std::ostringstream os;
   os.precision(4);
   os << "scene    " << scene.file << "\n";
-  os << "grid     " << result.residual.grid.nx << " x " << result.residual.grid.ny
-     << " nodes, spacing " << result.layout.spacing * 1e3 << " um\n";
-  const Roughness& r = result.roughness;
-  os << "Sa " << r.Sa * 1e3 << " um   Sq " << r.Sq * 1e3 << " um   Sz " << r.Sz * 1e3
-     << " um   Ssk " << r.Ssk << "   Sku " << r.Sku << "   Sdq " << r.Sdq << "   Sdr " << r.Sdr
-     << " %\n";
+  const Grid &raw = result.raw.grid, &res = result.residual.grid;
+  os << "grids    height_raw " << raw.nx << " x " << raw.ny << " nodes in plan, dx " << raw.dx * 1e3
+     << " um, dy " << raw.dy * 1e3 << " um; height_residual " << res.nx << " x " << res.ny
+     << " nodes " << (unrolled ? "along the surface" : "in plan") << ", " << res.dx * 1e3 << " x "
+     << res.dy * 1e3 << " um\n";
+  os << roughness_text(result.roughness, "   ", 4) << "\n";
   os << "time     ";
   for (const auto& s : result.stages) os << s.name << " " << s.seconds << " s  ";
   os << "\noutputs  " << out_dir << "/summary.json";

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -123,7 +124,7 @@ Surface read_sdf(const std::string& path) {
   return s;
 }
 
-void write_sdf(const std::string& path, const HeightMap& map) {
+void write_sdf(const std::string& path, const HeightMap& map, const FileInfo& info) {
   const Grid& g = map.grid;
   if (g.nx > 65535 || g.ny > 65535)
     throw std::runtime_error("sdf holds at most 65535 x 65535 points");
@@ -131,8 +132,14 @@ void write_sdf(const std::string& path, const HeightMap& map) {
     std::string h(kHeader, '\0');
     std::memcpy(&h[0], "bISO-1.0", 8);
     std::memcpy(&h[8], "topomill", 8);
-    std::memcpy(&h[18], "010119700000", 12);
-    std::memcpy(&h[30], "010119700000", 12);
+    // CreateDate and ModDate: ddmmyyyyhhmm, UTC.
+    const std::time_t t = created_time(info);
+    std::tm tm{};
+    gmtime_r(&t, &tm);
+    char date[16];
+    std::strftime(date, sizeof date, "%d%m%Y%H%M", &tm);
+    std::memcpy(&h[18], date, 12);
+    std::memcpy(&h[30], date, 12);
     const std::uint16_t nx = static_cast<std::uint16_t>(g.nx),
                         ny = static_cast<std::uint16_t>(g.ny);
     std::memcpy(&h[kNumPoints], &nx, 2);

@@ -12,6 +12,7 @@
 #include "io/atomic_file.hpp"
 #include "io/read_file.hpp"
 #include "topomill/error.hpp"
+#include "topomill/version.hpp"
 
 namespace topomill {
 
@@ -76,6 +77,31 @@ class Archive {
   std::unique_ptr<zip_t, ZipCloser> zip_;
 };
 
+// Text for an XML element: the five markup characters escaped.
+std::string xml_text(const std::string& text) {
+  std::string out;
+  for (const char c : text) switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
+    }
+  return out;
+}
+
 std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
@@ -126,6 +152,14 @@ Surface read_x3p(const std::string& path) {
   Grid g;
   g.nx = static_cast<std::size_t>(nx), g.ny = static_cast<std::size_t>(ny);
   g.dx = increment("CX") * 1e3, g.dy = increment("CY") * 1e3;
+  // The axes' offsets place the first point (optional; a bad one is refused, not guessed).
+  auto offset = [&](const char* axis) {
+    const double v = axes.child(axis).child("Offset").text().as_double(0);
+    if (!std::isfinite(v) || std::abs(v) > 1e3)
+      zip.fail(std::string("axis ") + axis + " has an Offset that is not a finite length");
+    return v * 1e3;
+  };
+  g.x0 = offset("CX"), g.y0 = offset("CY");
   check_map_memory(path, static_cast<double>(nx) * static_cast<double>(ny));
   s.map = HeightMap(g);
   const std::size_t n = g.size();
@@ -202,13 +236,17 @@ Surface read_x3p(const std::string& path) {
   return s;
 }
 
-void write_x3p(const std::string& path, const HeightMap& map) {
+void write_x3p(const std::string& path, const HeightMap& map, const FileInfo& info) {
   const Grid& g = map.grid;
   std::string data(g.size() * 8, '\0');
   for (std::size_t i = 0; i < g.size(); ++i) {
     const double v = map.z[i] * 1e-3;
     std::memcpy(data.data() + i * 8, &v, 8);
   }
+  // A simulation has no calibration: its date is the run's, as for the measurement's Date.
+  const std::string date = iso8601_utc(created_time(info));
+  std::string comment = info.title.empty() ? "simulated surface" : info.title;
+  if (!info.description.empty()) comment += ": " + info.description;
   std::ostringstream xml;
   xml.precision(17);
   xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
@@ -219,13 +257,12 @@ void write_x3p(const std::string& path, const HeightMap& map) {
       << "<CY><AxisType>I</AxisType><DataType>D</DataType><Increment>" << g.dy * 1e-3
       << "</Increment><Offset>" << g.y0 * 1e-3 << "</Offset></CY>\n"
       << "<CZ><AxisType>A</AxisType><DataType>D</DataType></CZ></Axes></Record1>\n"
-      << "<Record2><Date>1970-01-01T00:00:00</Date><Instrument><Manufacturer>topomill</"
-         "Manufacturer>"
-      << "<Model>simulation</Model><Serial>-</Serial><Version>"
-      << "0.1.0"
-      << "</Version></Instrument><CalibrationDate>1970-01-01T00:00:00</CalibrationDate>"
+      << "<Record2><Date>" << date << "</Date><Creator>" << xml_text(file_creator())
+      << "</Creator><Instrument><Manufacturer>topomill</Manufacturer>"
+      << "<Model>simulation</Model><Serial>-</Serial><Version>" << kVersion
+      << "</Version></Instrument><CalibrationDate>" << date << "</CalibrationDate>"
       << "<ProbingSystem><Type>Software</Type><Identification>topomill</Identification>"
-      << "</ProbingSystem><Comment>simulated surface</Comment></Record2>\n"
+      << "</ProbingSystem><Comment>" << xml_text(comment) << "</Comment></Record2>\n"
       << "<Record3><MatrixDimension><SizeX>" << g.nx << "</SizeX><SizeY>" << g.ny
       << "</SizeY><SizeZ>1</SizeZ></MatrixDimension><DataLink><PointDataLink>bindata/data.bin"
       << "</PointDataLink><MD5ChecksumPointData>" << md5_hex(data.data(), data.size())

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "io/file_info.hpp"
 #include "metrology/surface.hpp"
 
 namespace topomill {
@@ -14,6 +15,6 @@ namespace topomill {
 Surface read_x3p(const std::string& path);
 
 // Float64 data, incremental X and Y axes, absolute Z, metres; atomically.
-void write_x3p(const std::string& path, const HeightMap& map_mm);
+void write_x3p(const std::string& path, const HeightMap& map_mm, const FileInfo& info = {});
 
 }  // namespace topomill

@@ -17,10 +17,7 @@ Surface read_surface(const std::string& path, double csv_spacing) {
   if (ext == ".sdf") return read_sdf(path);
   if (ext == ".gsf") return read_gsf(path);
   if (ext == ".csv") {
-    if (!(csv_spacing > 0))
-      throw InputError(SourceRef{path}, "--spacing",
-                       "a CSV file has no lateral scale: give the node spacing in mm");
-    return read_csv(path, csv_spacing);
+    return read_csv(path, csv_spacing);  // its header's grid, else csv_spacing
   }
   throw InputError(SourceRef{path}, "",
                    "unknown format '" + ext + "': expected .x3p, .sdf, .gsf or .csv");

@@ -1,0 +1,23 @@
+#include "io/file_info.hpp"
+
+#include "topomill/version.hpp"
+
+namespace topomill {
+
+std::string file_creator() {
+  return std::string("topomill ") + kVersion;
+}
+
+std::string iso8601_utc(std::time_t t) {
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[40];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%S+00:00", &tm);
+  return buf;
+}
+
+std::time_t created_time(const FileInfo& info) {
+  return info.created != 0 ? info.created : std::time(nullptr);
+}
+
+}  // namespace topomill
