@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <stdexcept>
 
@@ -92,20 +93,25 @@ std::vector<double> ticks(double lo, double hi, bool log, int intervals) {
 
 CairoSurface map_image(const HeightMap& map, double offset, double scale, double lo, double hi) {
   const Grid& g = map.grid;
-  CairoSurface img(cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(g.nx),
-                                              static_cast<int>(g.ny)),
-                   cairo_surface_destroy);
+  // Every k-th node where a side exceeds 2048: a picture needs no more, and a fine grid's full
+  // image would cost its own gigabytes (and cairo stops at 32767 pixels).
+  const std::size_t k = std::max<std::size_t>(1, (std::max(g.nx, g.ny) + 2047) / 2048);
+  const std::size_t w = (g.nx + k - 1) / k, h = (g.ny + k - 1) / k;
+  CairoSurface img(
+      cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(w), static_cast<int>(h)),
+      cairo_surface_destroy);
   cairo_surface_flush(img.get());
   unsigned char* data = cairo_image_surface_get_data(img.get());
   const int stride = cairo_image_surface_get_stride(img.get());
-  for (std::size_t j = 0; j < g.ny; ++j) {
-    auto* row = reinterpret_cast<std::uint32_t*>(data + (g.ny - 1 - j) * stride);
-    for (std::size_t i = 0; i < g.nx; ++i) {
+  for (std::size_t b = 0; b < h; ++b) {
+    auto* row = reinterpret_cast<std::uint32_t*>(data + (h - 1 - b) * stride);
+    for (std::size_t a = 0; a < w; ++a) {
+      const std::size_t i = a * k, j = b * k;
       const double z = map.at(i, j);
       double rgb[3] = {0.6, 0.6, 0.6};
       if (std::isfinite(z)) viridis(((z - offset) * scale - lo) / (hi - lo), rgb);
       auto byte = [](double c) { return static_cast<std::uint32_t>(std::lround(c * 255)); };
-      row[i] = byte(rgb[0]) << 16 | byte(rgb[1]) << 8 | byte(rgb[2]);
+      row[a] = byte(rgb[0]) << 16 | byte(rgb[1]) << 8 | byte(rgb[2]);
     }
   }
   cairo_surface_mark_dirty(img.get());

@@ -39,7 +39,8 @@ std::string number(double v);
 std::vector<double> ticks(double lo, double hi, bool log, int intervals = 4);
 
 // The map's nodes as an image, pixel (i, ny-1-j) = node (i, j) so that y grows upwards, coloured
-// by viridis over [lo, hi] of (z - offset) * scale. Non-finite nodes are grey.
+// by viridis over [lo, hi] of (z - offset) * scale. Non-finite nodes are grey. Above 2048 nodes
+// a side, every k-th node.
 CairoSurface map_image(const HeightMap& map, double offset, double scale, double lo, double hi);
 
 // The image drawn over the rectangle (x, y, w, h), scaled as a whole.
