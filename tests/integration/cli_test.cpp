@@ -95,6 +95,29 @@ TEST_CASE("every committed scene under paper, validation and examples passes che
   }
 }
 
+TEST_CASE("every plugin folder holds its README and an example scene that runs",
+          "[cli][scene][plugins]") {
+  int plugins = 0;
+  for (const auto& dir : fs::directory_iterator(testing::source_dir() + "/plugins")) {
+    if (!dir.is_directory() || dir.path().filename() == "common") continue;  // shared headers
+    ++plugins;
+    const std::string name = dir.path().filename().string();
+    INFO(name);
+    CHECK(fs::exists(dir.path() / "README.md"));
+    REQUIRE(fs::exists(dir.path() / "example.toml"));
+    const std::string out = testing::temp_dir("example_" + name);
+    const auto r =
+        run_topomill("run plugins/" + name + "/example.toml -q --threads 2 --out '" + out + "'");
+    INFO(r.err);
+    CHECK(r.exit_code == 0);
+    CHECK(fs::exists(out + "/summary.json"));
+    // The example shows its own plugin at work.
+    CHECK(testing::read_file(out + "/summary.json").find("libtopomill_" + name + ".so") !=
+          std::string::npos);
+  }
+  CHECK(plugins >= 12);
+}
+
 TEST_CASE("measure on run's x3p output gives the run's own parameters", "[cli][metrology]") {
   const std::string out = testing::temp_dir("run_x3p");
   const auto r = run_topomill("run configs/examples/quick.toml -q --out '" + out +
