@@ -1,4 +1,4 @@
-// Contact area between tool and workpiece, CATW (MODEL.md Eq. 39-42).
+// Contact area between tool and workpiece, CATW (docs/model.md Eq. 39-42).
 #pragma once
 
 namespace topomill {

@@ -1,5 +1,5 @@
 // From a scene's region, cutting and path tables to the node grid and the raster tool path
-// (MODEL.md Eq. 13-16): enough passes and feed length before and after the patch that every node
+// (docs/model.md Eq. 13-16): enough passes and feed length before and after the patch that every node
 // of it is finished.
 #pragma once
 

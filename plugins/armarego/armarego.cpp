@@ -1,4 +1,4 @@
-// Mechanistic ball-end cutting force (Armarego; Lee and Altintas form), MODEL.md Eq. 18-21.
+// Mechanistic ball-end cutting force (Armarego; Lee and Altintas form), docs/model.md Eq. 18-21.
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -15,7 +15,7 @@ namespace topomill::plugins {
 // n = (sin a cos phi, sin a sin phi, -cos a), the meridian tangent a = dn/d(alpha) =
 // (cos a cos phi, cos a sin phi, sin a) and the cutting direction v = s (-sin phi, cos phi, 0)
 // (s = +1 counter-clockwise). Its force on the tool is -dFt v - dFr n - dFa a: Eq. 20 in these
-// vectors, which reproduces MODEL.md's closed form (tested). Chip thickness t = max(0, fz f.n).
+// vectors, which reproduces docs/model.md's closed form (tested). Chip thickness t = max(0, fz f.n).
 // Elements count when they face the feed (t > 0), lie in the CATW and, when the core says so
 // (CutState::in_material), are in material: below the uncut surface, not removed by the
 // previous pass.

@@ -1,5 +1,5 @@
 // Static tool deflection: the tool as a cantilever clamped in the holder, loaded at the cutting
-// force's centre (MODEL.md Eq. 27-28).
+// force's centre (docs/model.md Eq. 27-28).
 #include <algorithm>
 #include <cmath>
 

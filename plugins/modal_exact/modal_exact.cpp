@@ -1,5 +1,5 @@
 // Modal vibration with the exact zero-order-hold step: exact for a force held constant over each
-// step, unconditionally stable (MODEL.md).
+// step, unconditionally stable (docs/model.md).
 #include <cmath>
 
 #include "../common/modal.hpp"

@@ -1,4 +1,4 @@
-// Springback of the machined surface (MODEL.md Eq. 29-31): plastic strain decaying exponentially
+// Springback of the machined surface (docs/model.md Eq. 29-31): plastic strain decaying exponentially
 // below the surface, eps(z) = J1 exp(-J2 z), integrated over the plastic depth d.
 #include <cmath>
 #include <cstdio>

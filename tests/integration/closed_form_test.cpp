@@ -1,5 +1,5 @@
 // The whole pipeline (raster path, Z-map, unrolled residual) against answers from outside the
-// code: MODEL.md's closed-form scallop heights, limits, and properties every run must have.
+// code: docs/model.md's closed-form scallop heights, limits, and properties every run must have.
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -31,7 +31,7 @@ double flat_scallop_um(double R, double ae) {
   return 1e3 * (R - std::sqrt(R * R - ae * ae / 4));
 }
 
-// MODEL.md: tool-centre circle Rc, chord ae on the finished surface of radius r.
+// docs/model.md: tool-centre circle Rc, chord ae on the finished surface of radius r.
 double convex_scallop_um(double R, double r, double ae) {
   const double half = std::asin(ae / (2 * r)), Rc = r + R;
   return 1e3 *
@@ -41,8 +41,9 @@ double convex_scallop_um(double R, double r, double ae) {
 
 TEST_CASE("flat cross-feed scallops have height R - sqrt(R^2 - (ae/2)^2)",
           "[closed-form][scallop]") {
-  // R = 5, ae = 0.3: 5 - sqrt(24.9775) = 2.2505 um (MODEL.md prints 2.2508, a slip: ae^2/8R
-  // alone is 2.2500 and the exact form adds 0.0005); ae = 0.5 gives MODEL.md's 6.2539 um.
+  // R = 5, ae = 0.3: 5 - sqrt(24.9775) = 2.2505 um (the notes docs/model.md started from printed
+  // 2.2508, a slip: ae^2/8R alone is 2.2500 and the exact form adds 0.0005); ae = 0.5 gives
+  // docs/model.md's 6.2539 um.
   CHECK(flat_scallop_um(5, 0.3) == Approx(2.2505).margin(5e-5));
   CHECK(flat_scallop_um(5, 0.5) == Approx(6.2539).margin(5e-5));
   for (double ae : {0.3, 0.5}) {
@@ -55,9 +56,9 @@ TEST_CASE("flat cross-feed scallops have height R - sqrt(R^2 - (ae/2)^2)",
   }
 }
 
-TEST_CASE("scallops stepping across the curvature follow MODEL.md's curved forms",
+TEST_CASE("scallops stepping across the curvature follow docs/model.md's curved forms",
           "[closed-form][scallop]") {
-  // MODEL.md, R = 5, r = 20 (finished surface), chord 0.5: convex 7.8220, concave 4.6888, flat
+  // docs/model.md, R = 5, r = 20 (finished surface), chord 0.5: convex 7.8220, concave 4.6888, flat
   // 6.2539 um. The scene's radius is the uncut surface's, ap = 0.3 away; the stepover is the arc
   // length on it with the same angle as the chord 0.5 on r = 20.
   CHECK(convex_scallop_um(5, 20, 0.5) == Approx(7.8220).margin(5e-5));

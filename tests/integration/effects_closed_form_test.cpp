@@ -1,6 +1,6 @@
 // What vibration, deflection and springback do to the surface, under one fixed load (the
 // fixture_constant_force plugin): each moves the tool path by a constant that Eq. 22-33 give in
-// closed form, computed here from MODEL.md's formulas. The pipeline's surface must be the surface
+// closed form, computed here from docs/model.md's formulas. The pipeline's surface must be the surface
 // of the ideal path moved by exactly that vector, with its sign, on an inclined plane.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -68,8 +68,8 @@ void check_moved_by(const std::string& toml, const topomill::Vec3& d) {
   CHECK(reversed > 1e-4);
 }
 
-// Cantilever (Eq. 27, MODEL.md): deflection per newton at height z above the tip, load at rx,
-// overhang L, stiffness EI. Beyond the load (z <= rx) MODEL.md's cubic; between clamp and load
+// Cantilever (Eq. 27, docs/model.md): deflection per newton at height z above the tip, load at rx,
+// overhang L, stiffness EI. Beyond the load (z <= rx) docs/model.md's cubic; between clamp and load
 // the clamped beam's own s^2 (3 sF - s) / 6 EI.
 double cantilever(double z, double rx, double L, double ei) {
   if (z <= rx)
@@ -86,7 +86,7 @@ topomill::Vec3 deflection(double load_centre) {
   return {c * kFx, c * kFy, 0};
 }
 
-// Eq. 30-31 as MODEL.md restates them, for the springback table below: the plastically
+// Eq. 30-31 as docs/model.md restates them, for the springback table below: the plastically
 // compressed layer recovers, so the surface ends above where the tool cut (+z), by
 // dd = J1 / J2 (1 - exp(-J2 d)).
 const char* kSpringback =

@@ -1,4 +1,4 @@
-// Modal dynamics against the single-degree-of-freedom answers of MODEL.md: static deflection,
+// Modal dynamics against the single-degree-of-freedom answers of docs/model.md: static deflection,
 // step overshoot, steady harmonic amplitude; RK4's order and stability limit; exactness of ZOH.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -115,7 +115,7 @@ TEST_CASE("RK4 beyond its stability limit is refused, or sub-stepped on request"
           "[dynamics][hard]") {
   const double f = 16000, w = 2 * M_PI * f;
   auto d = modal("modal_rk4", {{"x", 785, 0.0246, 1.74e7}, {"z", f, 0.0, 1e8}});
-  // Undamped, the limit is omega dt = 2 sqrt 2 (MODEL.md).
+  // Undamped, the limit is omega dt = 2 sqrt 2 (docs/model.md).
   CHECK(d->max_stable_step() == Approx(2 * std::sqrt(2.0) / w).epsilon(1e-6));
   const double dt = 3.2 / w;
   CHECK_THROWS_WITH(d->respond(constant(1, 100), dt),

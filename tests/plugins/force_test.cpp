@@ -1,4 +1,4 @@
-// The Armarego force against MODEL.md's closed form (no paper needed) and Eq. 20's geometry.
+// The Armarego force against docs/model.md's closed form (no paper needed) and Eq. 20's geometry.
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -10,7 +10,7 @@
 using testing::make_model;
 
 namespace {
-// MODEL.md: zero helix, no edge forces, one tooth, alpha in [0, kappa_m], flat slot fed along +X,
+// docs/model.md: zero helix, no edge forces, one tooth, alpha in [0, kappa_m], flat slot fed along +X,
 // theta measured clockwise from +Y, chip thickness fz sin(theta) sin(alpha).
 Eigen::Vector3d closed_form(double theta, double R, double fz, double ktc, double krc, double kac,
                             double km) {
@@ -47,11 +47,11 @@ topomill::CutState cut_state(const topomill::Vec3& feed, double alpha_min, doubl
 }
 }  // namespace
 
-TEST_CASE("the ball-end force matches MODEL.md's closed form", "[force]") {
+TEST_CASE("the ball-end force matches docs/model.md's closed form", "[force]") {
   auto tool = closed_form_tool();
   auto force = closed_form_force(0.0045);
   topomill::CutState st = cut_state({1, 0, 0}, 0, M_PI / 2);
-  // MODEL.md's printed values, then the closed form at other angles and engagements.
+  // docs/model.md's printed values, then the closed form at other angles and engagements.
   st.spindle_angle = 0;  // theta = 90 deg
   auto f = force->evaluate(*tool, st).force;
   CHECK(f.x() == Approx(-439.16).margin(0.01));
@@ -85,7 +85,7 @@ struct Quadrature {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   double load_centre = 0;
 };
-// Eq. 18-21 by a midpoint rule of 20000 pieces per tooth, written from MODEL.md and not from the
+// Eq. 18-21 by a midpoint rule of 20000 pieces per tooth, written from docs/model.md and not from the
 // plugin: the element's azimuth and its edge length from edge_point (a central difference for
 // the length), Eq. 19's chip as the feed projected on the ball normal, Eq. 20 in Lee and
 // Altintas' angle theta (clockwise from +Y, a cw tool). A ccw tool is the mirror image (x -> -x)

@@ -1,4 +1,4 @@
-// Edge geometry against MODEL.md's numbers and the defining properties of each edge.
+// Edge geometry against docs/model.md's numbers and the defining properties of each edge.
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -12,7 +12,7 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 }
 
-TEST_CASE("lag angles at alpha = 10 deg, helix 30 deg, match MODEL.md", "[tool]") {
+TEST_CASE("lag angles at alpha = 10 deg, helix 30 deg, match docs/model.md", "[tool]") {
   auto lox = make_model<ToolGeometry>("ball_end_loxodrome", {{"radius", 5}, {"helix_angle", 30}});
   auto lead =
       make_model<ToolGeometry>("ball_end_constant_lead", {{"radius", 5}, {"helix_angle", 30}});

@@ -1,6 +1,6 @@
 // The lowest edge height over a node, by brute force: every pass, every tooth, the time the ball
 // can be below the uncut surface sampled finely (finer near the axis, where the node's azimuth
-// turns at v / rho), the edge taken from ToolGeometry::edge_point (MODEL.md Eq. 1-7, not an
+// turns at v / rho), the edge taken from ToolGeometry::edge_point (docs/model.md Eq. 1-7, not an
 // evaluator's own formula), every sign change of the edge-minus-node azimuth bisected. No bound,
 // no stopping rule. Used by the near-axis and the kinematics tests.
 #pragma once

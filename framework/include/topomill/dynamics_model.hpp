@@ -1,4 +1,4 @@
-// Slot: the structure's vibration under the cutting force (MODEL.md Eq. 17, 22-26).
+// Slot: the structure's vibration under the cutting force (docs/model.md Eq. 17, 22-26).
 #pragma once
 
 #include <limits>

@@ -1,4 +1,4 @@
-// Slot: cutting force from the tool state (MODEL.md Eq. 18-21).
+// Slot: cutting force from the tool state (docs/model.md Eq. 18-21).
 #pragma once
 
 #include "topomill/cut_state.hpp"

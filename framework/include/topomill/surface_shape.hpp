@@ -1,4 +1,4 @@
-// Slot: the nominal (uncut) workpiece surface (MODEL.md Eq. 8-12).
+// Slot: the nominal (uncut) workpiece surface (docs/model.md Eq. 8-12).
 #pragma once
 
 #include <limits>

@@ -1,4 +1,4 @@
-// Slot: the cutting edges of a ball-end mill (MODEL.md Eq. 1-5).
+// Slot: the cutting edges of a ball-end mill (docs/model.md Eq. 1-5).
 #pragma once
 
 #include "topomill/model.hpp"

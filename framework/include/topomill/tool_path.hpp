@@ -1,4 +1,4 @@
-// The tool-centre trajectory of a raster path over a cylindrical surface (MODEL.md Eq. 13-16),
+// The tool-centre trajectory of a raster path over a cylindrical surface (docs/model.md Eq. 13-16),
 // plus the dynamic correction TC of Eq. 32-33. Owned by the core, read by evaluators.
 #pragma once
 
