@@ -50,15 +50,12 @@ double sdr_gwyddion(const HeightMap& map, const std::function<bool(std::size_t)>
   const Grid& g = map.grid;
   if (g.nx < 2 || g.ny < 2) return 0.0;
   double excess = 0, flat = 0;
-  auto cell = [&](std::size_t i0, std::size_t j0, std::size_t i1, std::size_t j1, double dx,
-                  double dy) {
-    excess += excess_cell(map.at(i0, j0), map.at(i1, j0), map.at(i1, j1), map.at(i0, j1), dx, dy);
-  };
   for (std::size_t j = 0; j + 1 < g.ny; ++j)
     for (std::size_t i = 0; i + 1 < g.nx; ++i)
       if (ok(g.index(i, j)) && ok(g.index(i + 1, j)) && ok(g.index(i, j + 1)) &&
           ok(g.index(i + 1, j + 1))) {
-        cell(i, j, i + 1, j + 1, g.dx, g.dy);
+        excess += excess_cell(map.at(i, j), map.at(i + 1, j), map.at(i + 1, j + 1),
+                              map.at(i, j + 1), g.dx, g.dy);
         flat += g.dx * g.dy;
       }
   // Border strips: half of a cell whose outer edge repeats the border nodes' heights (the half

@@ -95,8 +95,9 @@ TEST_CASE("every writer round-trips through its reader", "[metrology][io]") {
   write_x3p(dir + "/a.x3p", s.map);
   write_sdf(dir + "/a.sdf", s.map);
   write_gsf(dir + "/a.gsf", s.map, {"t", "a scene; tool x (radius 5)", 0});
-  write_csv(dir + "/a.csv", s.map);
-  // The CSV's grid comes from its header, with or without a --spacing that agrees.
+  write_csv(dir + "/a.csv", s.map, {"a title\non two lines", "a scene\rnamed with breaks", 0});
+  // The CSV's grid comes from its header, with or without a --spacing that agrees; line breaks
+  // in its title or scene do not break the header (they would be read as rows).
   const Surface x = read_x3p(dir + "/a.x3p"), d = read_sdf(dir + "/a.sdf"),
                 gs = read_gsf(dir + "/a.gsf"), c = read_csv(dir + "/a.csv", 0),
                 c2 = read_csv(dir + "/a.csv", 0.004);
@@ -105,7 +106,7 @@ TEST_CASE("every writer round-trips through its reader", "[metrology][io]") {
   CHECK(c2.map.z == c.map.z);
   CHECK_THROWS_WITH(read_csv(dir + "/a.csv", 0.005),
                     Catch::Contains("the file's header gives dx_mm = 0.004") &&
-                        Catch::Contains("a.csv:5), not 0.005"));
+                        Catch::Contains("a.csv:6), not 0.005"));
   for (const Surface* r : {&x, &d, &gs, &c}) {
     REQUIRE(r->map.grid.nx == 23);
     REQUIRE(r->map.grid.ny == 17);

@@ -116,9 +116,9 @@ void write_csv(const std::string& path, const HeightMap& map, const FileInfo& in
       const auto r = std::to_chars(buf, buf + sizeof buf, v);
       return std::string(buf, r.ptr);
     };
-    out << "# " << (info.title.empty() ? "height map" : info.title) << ", written by "
+    out << "# " << one_line(info.title.empty() ? "height map" : info.title) << ", written by "
         << file_creator() << " at " << iso8601_utc(created_time(info)) << "\n";
-    if (!info.description.empty()) out << "# " << info.description << "\n";
+    if (!info.description.empty()) out << "# " << one_line(info.description) << "\n";
     out << "# heights in um; row j at y = y0_mm + j dy_mm, column i at x = x0_mm + i dx_mm\n"
         << "# x0_mm = " << exact(g.x0) << "\n# y0_mm = " << exact(g.y0)
         << "\n# dx_mm = " << exact(g.dx) << "\n# dy_mm = " << exact(g.dy) << "\n";

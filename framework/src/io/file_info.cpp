@@ -16,6 +16,12 @@ std::string iso8601_utc(std::time_t t) {
   return buf;
 }
 
+std::string one_line(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r' || c == '\0') c = ' ';
+  return text;
+}
+
 std::time_t created_time(const FileInfo& info) {
   return info.created != 0 ? info.created : std::time(nullptr);
 }

@@ -13,13 +13,6 @@
 namespace topomill {
 
 namespace {
-
-// A header value on one line: line breaks and NULs would end the header or the key.
-std::string one_line(std::string text) {
-  for (char& c : text)
-    if (c == '\n' || c == '\r' || c == '\0') c = ' ';
-  return text;
-}
 constexpr const char* kMagic = "Gwyddion Simple Field 1.0\n";
 [[noreturn]] void fail(const std::string& path, const std::string& why) {
   throw InputError(SourceRef{path}, "", why);

@@ -98,7 +98,7 @@ void write_line_chart(const std::string& path, const ChartLabels& lab,
     cairo_set_dash(cr, dash, 2, 0);
     cairo_move_to(cr, x.map(v), y.a), cairo_line_to(cr, x.map(v), y.b), cairo_stroke(cr);
     cairo_set_dash(cr, nullptr, 0, 0);
-    cv.text(x.map(v) + 4, y.b + 6, name, 0, 0);
+    cv.text(x.map(v) + 4, y.a - 8, name, 0, 1);  // at the foot: the data crowd the top
   }
   auto usable = [&](double vx, double vy) {
     return std::isfinite(vx) && std::isfinite(vy) && (!lab.log_x || vx > 0) &&
