@@ -158,7 +158,11 @@ int cmd_ablate(const Args& args) {
   labels.title = "Sa, Sq, Sz per variant: " + scene.table("scene").string("name");
   labels.y = "height parameter (µm)";
   write_bar_chart((dir / "ablation.png").string(), labels, {"Sa", "Sq", "Sz"}, bars);
-  if (!maps.empty()) write_heatmap_panels((dir / "ablation_maps.png").string(), maps);
+  // The residual lies along the surface (s) when the nominal form was removed, else in plan.
+  const bool along = scene.table("analysis").string("form") == "nominal";
+  if (!maps.empty())
+    write_heatmap_panels((dir / "ablation_maps.png").string(), maps, "x (mm)",
+                         along ? "s (mm)" : "y (mm)");
   std::cout << table.markdown() << "\n"
             << results.size() - failed << " of " << results.size() << " variants ok; "
             << (dir / "ablation.csv").string() << "\n";
