@@ -85,7 +85,15 @@ void write_line_chart(const std::string& path, const ChartLabels& lab,
   const auto [xl, xh] = range(xs, lab.log_x);
   const auto [yl, yh] = range(ys, lab.log_y);
   const bool legend = !series.empty();
-  const Axis x{xl, xh, lab.log_x, 80, legend ? w - 390.0 : w - 30.0};
+  // The legend as wide as its longest name (the plot takes the rest).
+  double names = 0;
+  for (const auto& s : series) {
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, s.name.c_str(), &e);
+    names = std::max(names, e.x_advance);
+  }
+  const double key = w - std::min(names + 56.0, w / 2.0);  // where the legend starts
+  const Axis x{xl, xh, lab.log_x, 80, legend ? key - 20.0 : w - 30.0};
   const Axis y{yl, yh, lab.log_y, h - 60.0, 40};
   frame(cv, lab, x, y, w, h);
   cairo_rectangle(cr, x.a, y.b, x.b - x.a, y.a - y.b);
@@ -132,10 +140,10 @@ void write_line_chart(const std::string& path, const ChartLabels& lab,
     for (std::size_t k = 0; k < series.size(); ++k) {
       const double ly = 50 + 22.0 * k;
       palette(cr, k);
-      cairo_rectangle(cr, w - 380, ly, 14, 14);
+      cairo_rectangle(cr, key, ly, 14, 14);
       cairo_fill(cr);
       cairo_set_source_rgb(cr, 0, 0, 0);
-      cv.text(w - 360, ly + 7, series[k].name, 0, 0.5);
+      cv.text(key + 20, ly + 7, series[k].name, 0, 0.5);
     }
   cv.write(path);
 }
