@@ -54,8 +54,8 @@ std::string value_text(const toml::node& v) {
   return os.str();
 }
 
-// The scene in one line for the files' comments: its name, then each model and the cutting
-// and region keys as resolved ("tool ball_end_loxodrome (radius 5, teeth 2, ...); ...").
+// The scene in one line for the files' comments: its name, then each table's model and its
+// keys as resolved ("tool ball_end_loxodrome (radius 5, teeth 2, ...); cutting (...); ...").
 std::string describe_scene(const Scene& scene) {
   const toml::table resolved = scene.to_toml();
   std::ostringstream os;
