@@ -40,9 +40,9 @@ class LagShape {
     k1_.resize(kBins), k2_.resize(kBins), k1_.reserve(size), k2_.reserve(size);
     turned_.assign(kBins + 1, 0.0);
     for (std::size_t b = 0; b < kBins; ++b) {
-      const double rho = static_cast<double>(b) * width;
-      const double l0 = lag(tool, rho), lm = lag(tool, rho + 0.5 * width),
-                   l1 = lag(tool, rho + width);
+      const double start = static_cast<double>(b) * width;
+      const double l0 = lag(tool, start), lm = lag(tool, start + 0.5 * width),
+                   l1 = lag(tool, start + width);
       turned_[b + 1] = turned_[b] + 1.1 * (std::abs(lm - l0) + std::abs(l1 - lm));
       double m1 = 0, m2 = 0;
       for (double f : {0.0, 0.5, 1.0}) {
@@ -71,7 +71,7 @@ class LagShape {
     return sin_a / cos_a * tool.lag_slope_sc(sin_a, cos_a);
   }
 
-  // At least how far the lag turns between any two distances within [lo, hi] (infinite where
+  // At most how far the lag turns between any two distances within [lo, hi] (infinite where
   // the lag is: then nothing is pruned by it).
   double variation(double lo, double hi) const {
     const double width = R_ / kBins;

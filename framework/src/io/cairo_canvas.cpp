@@ -118,6 +118,8 @@ CairoSurface map_image(const HeightMap& map, double offset, double scale, double
   return img;
 }
 
+namespace {
+// The image drawn over the rectangle (x, y, w, h), scaled as a whole.
 void draw_image(cairo_t* cr, cairo_surface_t* image, double x, double y, double w, double h) {
   const int iw = cairo_image_surface_get_width(image), ih = cairo_image_surface_get_height(image);
   cairo_save(cr);
@@ -132,6 +134,30 @@ void draw_image(cairo_t* cr, cairo_surface_t* image, double x, double y, double 
   cairo_pattern_set_extend(cairo_get_source(cr), CAIRO_EXTEND_PAD);
   cairo_paint(cr);
   cairo_restore(cr);
+}
+}  // namespace
+
+void draw_map(const Canvas& cv, const HeightMap& map, double offset, double lo, double hi, double x,
+              double y, double w, double h) {
+  cairo_t* cr = *cv;
+  const auto image = map_image(map, offset, 1e3, lo, hi);
+  draw_image(cr, image.get(), x, y, w, h);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_set_line_width(cr, 1);
+  cairo_rectangle(cr, x, y, w, h);
+  cairo_stroke(cr);
+  const Grid& g = map.grid;
+  const double xw = std::max(1e-12, (g.nx - 1) * g.dx), yw = std::max(1e-12, (g.ny - 1) * g.dy);
+  for (double v : ticks(g.x0, g.x0 + xw, false)) {
+    const double px = x + (v - g.x0) / xw * w;
+    cairo_move_to(cr, px, y + h), cairo_line_to(cr, px, y + h + 5), cairo_stroke(cr);
+    cv.text(px, y + h + 8, number(v), 0.5, 0);
+  }
+  for (double v : ticks(g.y0, g.y0 + yw, false)) {
+    const double py = y + h - (v - g.y0) / yw * h;
+    cairo_move_to(cr, x - 5, py), cairo_line_to(cr, x, py), cairo_stroke(cr);
+    cv.text(x - 8, py, number(v), 1, 0.5);
+  }
 }
 
 void colour_bar(const Canvas& cv, double x, double y, double w, double h, double lo, double hi,

@@ -43,8 +43,10 @@ std::vector<double> ticks(double lo, double hi, bool log, int intervals = 4);
 // a side, every k-th node.
 CairoSurface map_image(const HeightMap& map, double offset, double scale, double lo, double hi);
 
-// The image drawn over the rectangle (x, y, w, h), scaled as a whole.
-void draw_image(cairo_t* cr, cairo_surface_t* image, double x, double y, double w, double h);
+// The map's heights (z - offset, in µm) coloured over [lo, hi] as one image over the rectangle
+// (x, y, w, h), framed, with ticks at its nodes' own coordinates (mm) below and to the left.
+void draw_map(const Canvas& cv, const HeightMap& map, double offset, double lo, double hi, double x,
+              double y, double w, double h);
 
 // A vertical colour bar at (x, y, w, h) for [lo, hi], at least five ticks on its right and its
 // label beside them, upright.

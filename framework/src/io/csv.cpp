@@ -1,6 +1,5 @@
 #include "io/csv.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -111,23 +110,18 @@ Surface read_csv(const std::string& path, double spacing) {
 void write_csv(const std::string& path, const HeightMap& map, const FileInfo& info) {
   const Grid& g = map.grid;
   write_atomically(path, [&](std::ostream& out) {
-    auto exact = [](double v) {  // the shortest text that reads back to v
-      char buf[32];
-      const auto r = std::to_chars(buf, buf + sizeof buf, v);
-      return std::string(buf, r.ptr);
-    };
     out << "# " << one_line(info.title.empty() ? "height map" : info.title) << ", written by "
         << file_creator() << " at " << iso8601_utc(created_time(info)) << "\n";
     if (!info.description.empty()) out << "# " << one_line(info.description) << "\n";
     out << "# heights in um; row j at y = y0_mm + j dy_mm, column i at x = x0_mm + i dx_mm\n"
-        << "# x0_mm = " << exact(g.x0) << "\n# y0_mm = " << exact(g.y0)
-        << "\n# dx_mm = " << exact(g.dx) << "\n# dy_mm = " << exact(g.dy) << "\n";
+        << "# x0_mm = " << exact_text(g.x0) << "\n# y0_mm = " << exact_text(g.y0)
+        << "\n# dx_mm = " << exact_text(g.dx) << "\n# dy_mm = " << exact_text(g.dy) << "\n";
     std::string row;
     for (std::size_t j = 0; j < g.ny; ++j) {
       row.clear();
       for (std::size_t i = 0; i < g.nx; ++i) {
         if (i) row += ',';
-        row += exact(map.at(i, j) * 1e3);
+        row += exact_text(map.at(i, j) * 1e3);
       }
       row += '\n';
       out << row;

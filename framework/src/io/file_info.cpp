@@ -1,5 +1,7 @@
 #include "io/file_info.hpp"
 
+#include <charconv>
+
 #include "topomill/version.hpp"
 
 namespace topomill {
@@ -14,6 +16,11 @@ std::string iso8601_utc(std::time_t t) {
   char buf[40];
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%S+00:00", &tm);
   return buf;
+}
+
+std::string exact_text(double v) {
+  char buf[32];
+  return std::string(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
 }
 
 std::string one_line(std::string text) {

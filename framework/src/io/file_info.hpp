@@ -17,6 +17,8 @@ struct FileInfo {
 std::string file_creator();
 // UTC in ISO 8601 with its offset, as x3p's xs:dateTime: "2026-11-24T12:40:05+00:00".
 std::string iso8601_utc(std::time_t t);
+// The shortest text that reads back to exactly v (0.3, not 0.29999999999999999).
+std::string exact_text(double v);
 // Text on one line: line breaks and NULs become spaces (a header line of CSV or gsf would end
 // there, and what follows would be read as data).
 std::string one_line(std::string text);

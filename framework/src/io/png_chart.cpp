@@ -235,28 +235,10 @@ void write_heatmap_panels(const std::string& path,
   const int w = left + static_cast<int>(panels.size()) * (side + gap) - gap + bar,
             h = top + side + 70;
   Canvas cv(w, h);
-  cairo_t* cr = *cv;
   for (std::size_t k = 0; k < panels.size(); ++k) {
     const HeightMap& m = panels[k].second;
-    const Grid& g = m.grid;
     const double px0 = left + static_cast<double>(k) * (side + gap);
-    const auto image = map_image(m, mean[k], 1e3, lo, hi);
-    draw_image(cr, image.get(), px0, top, side, side);
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_set_line_width(cr, 1);
-    cairo_rectangle(cr, px0, top, side, side);
-    cairo_stroke(cr);
-    const double xw = std::max(1e-12, (g.nx - 1) * g.dx), yw = std::max(1e-12, (g.ny - 1) * g.dy);
-    for (double v : ticks(g.x0, g.x0 + xw, false)) {
-      const double px = px0 + (v - g.x0) / xw * side;
-      cairo_move_to(cr, px, top + side), cairo_line_to(cr, px, top + side + 4), cairo_stroke(cr);
-      cv.text(px, top + side + 6, number(v), 0.5, 0);
-    }
-    for (double v : ticks(g.y0, g.y0 + yw, false)) {
-      const double py = top + side - (v - g.y0) / yw * side;
-      cairo_move_to(cr, px0 - 4, py), cairo_line_to(cr, px0, py), cairo_stroke(cr);
-      cv.text(px0 - 6, py, number(v), 1, 0.5);
-    }
+    draw_map(cv, m, mean[k], lo, hi, px0, top, side, side);
     cv.text(px0 + side / 2.0, top + side + 26, x_label, 0.5, 0);
     cv.text(px0 + side / 2.0, top - 12, panels[k].first, 0.5, 1);
   }

@@ -20,24 +20,7 @@ void write_png_heatmap(const std::string& path, const HeightMap& map, const Heat
   const double left = 80, top = 56, right = 130, bottom = 60;
   Canvas cv(static_cast<int>(left + pw + right), static_cast<int>(top + ph + bottom));
   cairo_t* cr = *cv;
-  const auto image = map_image(map, 0.0, 1e3, lo, hi);
-  draw_image(cr, image.get(), left, top, pw, ph);
-  cairo_set_source_rgb(cr, 0, 0, 0);
-  cairo_set_line_width(cr, 1);
-  cairo_rectangle(cr, left, top, pw, ph);
-  cairo_stroke(cr);
-  // Ticks at the nodes' own coordinates; a node's colour fills the pixels nearest it.
-  const double x0 = g.x0, x1 = g.x0 + xw, y0 = g.y0, y1 = g.y0 + yw;
-  for (double v : ticks(x0, x1, false)) {
-    const double px = left + (v - x0) / (x1 - x0) * pw;
-    cairo_move_to(cr, px, top + ph), cairo_line_to(cr, px, top + ph + 5), cairo_stroke(cr);
-    cv.text(px, top + ph + 8, number(v), 0.5, 0);
-  }
-  for (double v : ticks(y0, y1, false)) {
-    const double py = top + ph - (v - y0) / (y1 - y0) * ph;
-    cairo_move_to(cr, left - 5, py), cairo_line_to(cr, left, py), cairo_stroke(cr);
-    cv.text(left - 8, py, number(v), 1, 0.5);
-  }
+  draw_map(cv, map, 0.0, lo, hi, left, top, pw, ph);
   cv.text(left + pw / 2, top + ph + 30, labels.x, 0.5, 0);
   cv.text(18, top + ph / 2, labels.y, 0.5, 0, true);
   colour_bar(cv, left + pw + 24, top, 18, ph, lo, hi, labels.z);

@@ -1,6 +1,5 @@
 #include "io/run_outputs.hpp"
 
-#include <charconv>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -11,6 +10,7 @@
 #include "interrupt.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
+#include "io/file_info.hpp"
 #include "io/gsf.hpp"
 #include "io/png_heatmap.hpp"
 #include "io/png_surface3d.hpp"
@@ -39,10 +39,7 @@ toml::table grid_table(const Grid& g) {
 // A scene value as a reader writes it: 0.3 (the shortest exact text, not 0.29999999999999999),
 // cw (no quotes), [0.86, 0.86].
 std::string value_text(const toml::node& v) {
-  if (const auto* d = v.as_floating_point()) {
-    char buf[32];
-    return std::string(buf, std::to_chars(buf, buf + sizeof buf, d->get()).ptr);
-  }
+  if (const auto* d = v.as_floating_point()) return exact_text(d->get());
   if (const auto* text = v.as_string()) return text->get();
   if (const auto* a = v.as_array()) {
     std::string out = "[";
