@@ -40,22 +40,6 @@ Schema cutting_schema() {
   return s;
 }
 
-Schema path_schema() {
-  Schema s;
-  s.add_choice("strategy", {"raster", "raster_across"},
-               "Tool path: raster = one-way passes feeding along +Y over the curvature, stepping "
-               "along +X (the paper's); raster_across = feeding along +X, stepping along the "
-               "surface by the arc length ae")
-      .with_default(std::string("raster"));
-  s.add_number("start_angle", "Spindle angle of the first tooth when the first pass starts")
-      .with_unit("deg")
-      .with_default(0.0);
-  s.add_number("phase_shift", "Spindle phase difference between adjacent passes (paper: 0)")
-      .with_unit("deg")
-      .with_default(0.0);
-  return s;
-}
-
 Schema region_schema() {
   Schema s;
   s.add_number("lambda",
@@ -95,9 +79,11 @@ Schema output_schema() {
 }  // namespace
 
 const std::vector<std::pair<std::string, Schema>>& core_schemas() {
-  static const std::vector<std::pair<std::string, Schema>> all = {
-      {"scene", scene_schema()},   {"cutting", cutting_schema()},   {"path", path_schema()},
-      {"region", region_schema()}, {"analysis", analysis_schema()}, {"output", output_schema()}};
+  static const std::vector<std::pair<std::string, Schema>> all = {{"scene", scene_schema()},
+                                                                  {"cutting", cutting_schema()},
+                                                                  {"region", region_schema()},
+                                                                  {"analysis", analysis_schema()},
+                                                                  {"output", output_schema()}};
   return all;
 }
 

@@ -38,10 +38,9 @@ double y_at_arc(const SurfaceShape& surface, double s, double y_guess, double sp
 }
 
 Layout make_layout(const Scene& scene, const ToolGeometry& tool,
-                   std::shared_ptr<const SurfaceShape> surface) {
+                   std::shared_ptr<const SurfaceShape> surface, const PathModel& path_model) {
   const Params& cut = scene.table("cutting");
   const Params& region = scene.table("region");
-  const Params& pathp = scene.table("path");
   const double R = tool.radius();
   const double ap = cut.number("depth_of_cut");
   const double ae = cut.number("stepover");
@@ -150,47 +149,56 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   const double vf = fz * teeth * rpm / 60.0;
   const double omega =
       2 * M_PI * rpm / 60.0 * (cut.string("spindle_direction") == "cw" ? -1.0 : 1.0);
-  const double start = pathp.number("start_angle") * kDeg;
-  const double shift = pathp.number("phase_shift") * kDeg;
-  const bool across = pathp.string("strategy") == "raster_across";
-
-  const double steps = across ? (L.s_hi - L.s_lo) / ae : size[0] / ae;
+  // The passes could be a step-over apart across the patch's width or along its arc.
+  const double steps = std::max(size[0], L.s_hi - L.s_lo) / ae;
   if (!(steps < kMaxPasses))
     throw InputError(region.where("size"), "region.size",
                      "the patch would need " + format_count(steps) + " passes at a step-over of " +
                          format_number(ae) +
                          " mm: expected fewer than 1e7 (shrink region.size or raise "
                          "cutting.stepover)");
-  std::vector<ToolPath::Pass> passes;
-  double y_first = 0, y_last = 0;  // extent of the surface points the tool passes over
-  if (!across) {
-    const long k_lo = static_cast<long>(std::floor(g.x0 / ae)) - 1;
-    const long k_hi = static_cast<long>(std::ceil(-g.x0 / ae)) + 1;
-    y_first = y_lo - run, y_last = y_hi + run;
-    for (long k = k_lo; k <= k_hi; ++k) {
-      if ((k & 4095) == 0) throw_if_interrupted();  // up to 1e7 passes: seconds
-      passes.push_back({static_cast<double>(k) * ae, y_first, (y_last - y_first) / vf,
-                        start + static_cast<double>(k - k_lo) * shift});
-    }
-  } else {
-    // Passes step by the arc length ae along the surface, centred on the patch.
-    const long k_lo = static_cast<long>(std::floor((L.s_lo - s_c) / ae)) - 1;
-    const long k_hi = static_cast<long>(std::ceil((L.s_hi - s_c) / ae)) + 1;
-    const double span_k = (static_cast<double>(k_hi - k_lo) + 2) * ae;
-    const double x_first = g.x0 - run, x_last = -g.x0 + run;
-    for (long k = k_lo; k <= k_hi; ++k) {
-      if ((k & 1023) == 0) throw_if_interrupted();  // up to 1e7 bisections: many seconds
-      const double y = y_at_arc(*surface, s_c + static_cast<double>(k) * ae, y_c, span_k);
-      passes.push_back(
-          {x_first, y, (x_last - x_first) / vf, start + static_cast<double>(k - k_lo) * shift});
-    }
-    y_first = passes.front().y_start, y_last = passes.back().y_start;
+  PathRequest rq;
+  rq.surface = surface.get();
+  rq.stepover = ae, rq.feed_speed = vf, rq.run = run;
+  // The grid is symmetric about x = 0: its far side is -x0 exactly.
+  rq.x_lo = g.x0, rq.x_hi = -g.x0, rq.y_lo = y_lo, rq.y_hi = y_hi;
+  rq.s_lo = L.s_lo, rq.s_hi = L.s_hi, rq.s_c = s_c, rq.y_c = y_c;
+  rq.stop = &stop_flag();
+  const SlotTable& path_slot = scene.slot("path");
+  std::vector<PassLine> lines;
+  try {
+    lines = path_model.passes(rq);
+  } catch (const ParamError& e) {
+    throw InputError(path_slot.params.where(e.key()), "path." + e.key(), e.what());
   }
+  throw_if_interrupted();
+  // A model's defect, not the user's: said so, with the model's name.
+  auto defect = [&](const std::string& what) {
+    return InputError(
+        path_slot.where, "path",
+        "the path model '" + path_slot.plugin + "' " + what + " (a defect of the model)");
+  };
+  if (lines.empty()) throw defect("laid out no pass");
   // Evaluators may look two revolutions beyond a pass's ends (tooth_passage tabulates the centre
   // there), and the path is only defined over the surface: that reach must lie on it too. (With
   // 49 teeth on the paper's arc it did not: the centre was NaN there and tooth_passage's table
   // halved its step until memory ran out.)
-  const double reach = across ? 0.0 : 2 * fz * teeth;
+  std::vector<ToolPath::Pass> passes;
+  double y_first = INFINITY, y_last = -INFINITY, reach = 0;
+  for (const PassLine& l : lines) {
+    const double along_x = l.x1 - l.x0, along_y = l.y1 - l.y0;
+    if (!(std::isfinite(along_x) && std::isfinite(along_y) && std::isfinite(l.phase)))
+      throw defect("laid out a pass with a coordinate or phase that is not finite");
+    if ((along_x != 0) == (along_y != 0))
+      throw defect("laid out a pass that is not along X or Y, or has no length");
+    // One of the two is zero: the sum is the length exactly.
+    ToolPath::Pass p{l.x0, l.y0, (std::abs(along_x) + std::abs(along_y)) / vf, l.phase};
+    p.dx = along_x > 0 ? 1 : along_x < 0 ? -1 : 0;
+    p.dy = along_y > 0 ? 1 : along_y < 0 ? -1 : 0;
+    passes.push_back(p);
+    y_first = std::min({y_first, l.y0, l.y1}), y_last = std::max({y_last, l.y0, l.y1});
+    if (along_y != 0) reach = 2 * fz * teeth;
+  }
   if (y_first - reach <= surface->y_min() || y_last + reach >= surface->y_max())
     throw InputError(
         region.where("lambda"), "region.lambda",
@@ -205,8 +213,11 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   for (double y : {y_first, y_lo, y_c, y_hi, y_last})
     L.lambda_max = std::max(L.lambda_max, std::abs(surface->inclination(y)));
 
-  L.path = std::make_shared<ToolPath>(surface, R - ap, vf, omega, std::move(passes),
-                                      across ? ToolPath::FeedAxis::X : ToolPath::FeedAxis::Y);
+  try {
+    L.path = std::make_shared<ToolPath>(surface, R - ap, vf, omega, std::move(passes));
+  } catch (const std::invalid_argument& e) {
+    throw defect(std::string("laid out passes the core cannot follow: ") + e.what());
+  }
   return L;
 }
 

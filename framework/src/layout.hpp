@@ -1,11 +1,11 @@
-// From a scene's region, cutting and path tables to the node grid and the raster tool path
-// (docs/model.md Eq. 13-16): enough passes and feed length before and after the patch that every node
-// of it is finished.
+// From a scene's region and cutting tables to the node grid, and through the path model to the
+// tool path (docs/model.md Eq. 13-16), checked to stay on the workpiece's surface.
 #pragma once
 
 #include <memory>
 
 #include "scene.hpp"
+#include "topomill/path_model.hpp"
 #include "topomill/surface_shape.hpp"
 #include "topomill/tool_geometry.hpp"
 #include "topomill/tool_path.hpp"
@@ -23,9 +23,6 @@ struct Layout {
 
 // Throws InputError (naming the scene key) for geometry the model cannot represent.
 Layout make_layout(const Scene& scene, const ToolGeometry& tool,
-                   std::shared_ptr<const SurfaceShape> surface);
-
-// The y whose surface point has arc coordinate s (bisection; arc_coordinate grows with y).
-double y_at_arc(const SurfaceShape& surface, double s, double y_guess, double span);
+                   std::shared_ptr<const SurfaceShape> surface, const PathModel& path_model);
 
 }  // namespace topomill

@@ -19,6 +19,8 @@ const char* slot_name(Slot slot) {
       return "deformation";
     case Slot::Evaluator:
       return "topography evaluator";
+    case Slot::Path:
+      return "tool path";
   }
   return "?";
 }
@@ -37,12 +39,14 @@ const char* slot_id(Slot slot) {
       return "deformation";
     case Slot::Evaluator:
       return "topography_evaluator";
+    case Slot::Path:
+      return "tool_path";
   }
   return "?";
 }
 
 std::vector<Slot> all_slots() {
-  return {Slot::ToolGeometry,  Slot::SurfaceShape, Slot::ForceModel,
+  return {Slot::ToolGeometry,  Slot::SurfaceShape, Slot::Path,     Slot::ForceModel,
           Slot::DynamicsModel, Slot::Deformation,  Slot::Evaluator};
 }
 

@@ -73,13 +73,14 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
   Prepared out;
   out.tool = make<ToolGeometry>(scene, catalog, "tool");
   out.surface = make<SurfaceShape>(scene, catalog, "workpiece");
+  out.path = make<PathModel>(scene, catalog, "path");
   out.evaluator = make<TopographyEvaluator>(scene, catalog, "evaluator");
   if (scene.enabled("force")) out.force = make<ForceModel>(scene, catalog, "force");
   if (scene.enabled("vibration")) out.dynamics = make<DynamicsModel>(scene, catalog, "vibration");
   for (const std::string name : {"deflection", "springback"})
     if (scene.enabled(name))
       out.deformations.emplace_back(name, make<Deformation>(scene, catalog, name));
-  out.layout = make_layout(scene, *out.tool, out.surface);
+  out.layout = make_layout(scene, *out.tool, out.surface, *out.path);
   const EvaluationCost cost = evaluation_cost(out, threads);
   check_memory(scene, out, cost, threads, available_memory());
   check_duration(scene, cost, threads);

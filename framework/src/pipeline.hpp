@@ -13,6 +13,7 @@
 #include "topomill/deformation.hpp"
 #include "topomill/dynamics_model.hpp"
 #include "topomill/force_model.hpp"
+#include "topomill/path_model.hpp"
 #include "topomill/surface_shape.hpp"
 #include "topomill/tool_geometry.hpp"
 #include "topomill/topography_evaluator.hpp"
@@ -48,6 +49,7 @@ struct RunResult {
 struct Prepared {
   std::shared_ptr<ToolGeometry> tool;
   std::shared_ptr<SurfaceShape> surface;
+  std::shared_ptr<PathModel> path;
   std::shared_ptr<TopographyEvaluator> evaluator;
   // Made only when an enabled effect needs them; null otherwise.
   std::shared_ptr<ForceModel> force;

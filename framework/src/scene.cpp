@@ -28,6 +28,7 @@ const std::vector<SlotTableSpec>& slot_table_specs() {
   static const std::vector<SlotTableSpec> specs = {
       {"tool", Slot::ToolGeometry, true, nullptr, false},
       {"workpiece", Slot::SurfaceShape, true, nullptr, false},
+      {"path", Slot::Path, false, "raster", false},
       {"force", Slot::ForceModel, false, nullptr, false},
       {"vibration", Slot::DynamicsModel, false, nullptr, true},
       {"deflection", Slot::Deformation, false, nullptr, true},
@@ -418,6 +419,19 @@ Scene SceneDocument::resolve(PluginCatalog& catalog, bool check_unused) const {
                        std::string(spec.table) + ".enabled",
                        std::string("unknown key: only the effect tables (vibration, deflection, "
                                    "springback) can be switched off"));
+    // The path was a core table choosing among built-in strategies; it is a slot now. Refused,
+    // not kept as an alias: one way to say it, and an old scene is told exactly what to write.
+    if (t && std::string(spec.table) == "path" && t->contains("strategy")) {
+      const toml::node* n = t->get("strategy");
+      const std::string was = n->is_string() ? std::string(*n->as_string()) : "raster";
+      const bool known = was == "raster" || was == "raster_across";
+      throw InputError(loc.at("path.strategy", key_source(*t, "strategy")), "path.strategy",
+                       "path.strategy is gone: the tool path is a plugin slot now; write plugin = "
+                       "\"" +
+                           (known ? was : std::string("raster")) +
+                           "\" in [path] instead (`topomill plugins` lists the tool paths: "
+                           "raster, raster_across, zigzag)");
+    }
     scene.slots[spec.table] = std::move(st);
   }
   // [force] serves the effects: without an enabled effect its library is never opened.

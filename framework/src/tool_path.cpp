@@ -2,33 +2,49 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace topomill {
 
 ToolPath::ToolPath(std::shared_ptr<const SurfaceShape> surface, double offset, double feed_speed,
-                   double spindle_rate, std::vector<Pass> passes, FeedAxis axis)
+                   double spindle_rate, std::vector<Pass> passes)
     : surface_(std::move(surface)),
       offset_(offset),
       feed_speed_(feed_speed),
       spindle_rate_(spindle_rate),
       passes_(std::move(passes)),
-      axis_(axis),
-      corrections_(passes_.size()) {}
-
-double ToolPath::surface_y(std::size_t p, double t) const {
-  return axis_ == FeedAxis::Y ? passes_[p].y_start + feed_speed_ * t : passes_[p].y_start;
+      axis_(FeedAxis::Y),
+      corrections_(passes_.size()) {
+  bool along_y = false, along_x = false;
+  for (const Pass& p : passes_) {
+    const bool y = p.dx == 0 && std::abs(p.dy) == 1, x = p.dy == 0 && std::abs(p.dx) == 1;
+    if (!x && !y)
+      throw std::invalid_argument("a pass's feed direction (" + std::to_string(p.dx) + ", " +
+                                  std::to_string(p.dy) + ") is not along X or Y");
+    along_y = along_y || y, along_x = along_x || x;
+  }
+  if (along_x && along_y) throw std::invalid_argument("passes feed along both X and Y");
+  if (along_x) axis_ = FeedAxis::X;
 }
 
+// The direction's components are 0 or +-1 (checked above), so that vf (d t) is vf t, -vf t or 0
+// exactly: a forward pass along Y gives the bits it gave before passes had a direction.
+double ToolPath::surface_y(std::size_t p, double t) const {
+  return passes_[p].y_start + feed_speed_ * (passes_[p].dy * t);
+}
+
+// The surface's tangent over the plan direction (dx, dy): (dx, dy cos, -dy sin), a unit vector.
 Vec3 ToolPath::feed_direction(std::size_t p, double t) const {
-  if (axis_ == FeedAxis::X) return Vec3::UnitX();
+  const Pass& pass = passes_[p];
+  if (pass.dy == 0) return {pass.dx, 0.0, 0.0};
   const double lambda = surface_->inclination(surface_y(p, t));
-  return {0.0, std::cos(lambda), -std::sin(lambda)};
+  return {0.0, pass.dy * std::cos(lambda), -(pass.dy * std::sin(lambda))};
 }
 
 Vec3 ToolPath::nominal_centre(std::size_t p, double t) const {
   const double y = surface_y(p, t);
   const double lambda = surface_->inclination(y);
-  const double x = axis_ == FeedAxis::X ? passes_[p].x + feed_speed_ * t : passes_[p].x;
+  const double x = passes_[p].x + feed_speed_ * (passes_[p].dx * t);
   return {x, y + offset_ * std::sin(lambda), surface_->height(y) + offset_ * std::cos(lambda)};
 }
 

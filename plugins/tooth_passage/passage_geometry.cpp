@@ -71,9 +71,11 @@ std::pair<double, double> PassageSetup::top_speed(std::size_t p, double ta, doub
 
 double PassageSetup::level_time(std::size_t p, double x, double y) const {
   const double tl = path->pass(p).t_end;
+  // Signed along the pass's feed (a reversed pass feeds towards -Y or -X), so that it grows.
+  const double sign = along_y ? path->pass(p).dy : path->pass(p).dx;
   auto along = [&](double t) {
     const Vec3 c = centre[p].nominal(t);
-    return along_y ? c.y() - y : c.x() - x;
+    return sign * (along_y ? c.y() - y : c.x() - x);
   };
   double t0 = 0, f0 = along(0), t1 = tl, f1 = along(tl);
   if (f0 > reach || f1 < -reach) return NAN;  // the pass never comes level with the node

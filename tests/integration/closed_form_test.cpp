@@ -75,13 +75,13 @@ TEST_CASE("scallops stepping across the curvature follow docs/model.md's curved 
           run_scene(paper_scene(std::string("plugin = '") + c.workpiece +
                                     "'\nradius = " + std::to_string(c.uncut_radius),
                                 0.0, 0.1, ae, 0.005),
-                    {"path.strategy=raster_across", "cutting.stepover=" + std::to_string(ae)});
+                    {"path.plugin=raster_across", "cutting.stepover=" + std::to_string(ae)});
       CHECK(cusp_height_um(r.residual, true) == Approx(c.expected_um).epsilon(0.015));
     }
   }
   SECTION("flat") {
     const auto r = run_scene(paper_scene("plugin = 'inclined_plane'", 0.0, 0.1, 0.5, 0.005),
-                             {"path.strategy=raster_across", "cutting.stepover=0.5"});
+                             {"path.plugin=raster_across", "cutting.stepover=0.5"});
     CHECK(cusp_height_um(r.residual, true) == Approx(6.2539).epsilon(0.015));
   }
 }

@@ -56,7 +56,7 @@ TEST_CASE("tooth_passage gives the closed-form scallops without zmap's grid erro
   const double ae = 20.3 * 2 * std::asin(0.5 / 40);
   const auto convex =
       run_scene(paper_scene("plugin = 'convex_arc'\nradius = 20.3", 0.0, 0.1, ae, 0.005),
-                {"evaluator.plugin=tooth_passage", "path.strategy=raster_across",
+                {"evaluator.plugin=tooth_passage", "path.plugin=raster_across",
                  "cutting.stepover=" + std::to_string(ae)});
   cusp = -INFINITY;
   for (std::size_t j = 0; j < convex.residual.grid.ny; ++j) {
@@ -134,7 +134,7 @@ TEST_CASE("the row walk gives the node walk's heights", "[fast][reference]") {
   };
   const Case c = GENERATE_COPY(Case{"tip", 0.0, {}, ""}, Case{"paper slope", 30.0, {}, ""},
                                Case{"steep", 60.0, {}, ""},
-                               Case{"across", 30.0, {"path.strategy=raster_across"}, ""},
+                               Case{"across", 30.0, {"path.plugin=raster_across"}, ""},
                                Case{"four teeth, constant lead",
                                     30.0,
                                     {"tool.plugin=ball_end_constant_lead", "tool.teeth=4"},
@@ -176,13 +176,18 @@ TEST_CASE("both walks find the lowest crossing that a brute-force scan finds",
     std::vector<std::string> overrides;
   };
   auto patch = [](double lambda) { return paper_scene(kConvex, lambda, 0.35, 0.35, 0.035); };
-  const Case c =
-      GENERATE_COPY(Case{"paper slope", patch(30.0), {}}, Case{"tip", patch(0.0), {}},
-                    Case{"vibration and deflection", patch(30.0) + kDynamics, {}},
-                    Case{"vibration and deflection at the tip", patch(0.0) + kDynamics, {}},
-                    Case{"the paper's dynamics at the tip",
-                         read_file(source_dir() + "/configs/paper/lambda30_fz01_dynamics.toml"),
-                         {"region.lambda=0", "region.size=[0.4,0.4]", "region.spacing=0.017"}});
+  const Case c = GENERATE_COPY(
+      Case{"paper slope", patch(30.0), {}}, Case{"tip", patch(0.0), {}},
+      Case{"vibration and deflection", patch(30.0) + kDynamics, {}},
+      Case{"vibration and deflection at the tip", patch(0.0) + kDynamics, {}},
+      // A reversed pass over the nodes and forward ones beside it.
+      Case{"zigzag, reversed at the tip, vibration and deflection",
+           patch(0.0) + kDynamics,
+           {"path.plugin=zigzag", "path.even_passes=reverse"}},
+      Case{"zigzag across at 30 deg", patch(30.0), {"path.plugin=zigzag", "path.feed_axis=x"}},
+      Case{"the paper's dynamics at the tip",
+           read_file(source_dir() + "/configs/paper/lambda30_fz01_dynamics.toml"),
+           {"region.lambda=0", "region.size=[0.4,0.4]", "region.spacing=0.017"}});
   INFO(c.name);
   auto with = [&](const char* walk) {
     auto o = c.overrides;

@@ -86,6 +86,16 @@ TEST_CASE("tooth_passage equals a brute force where the axis passes over the nod
   const Case c = GENERATE_COPY(
       // The issue's case: a vertical ball end on a flat plate, across a pass line at 1 um.
       Case{"flat, helix 0, ccw, 2 teeth", flat, 0.0, 0.04, 0.02, 0.001, vertical_flat, ""},
+      // The same with the pass over the nodes reversed (zigzag): the axis passes the other way.
+      Case{"flat, helix 0, ccw, zigzag reversed over the nodes",
+           flat,
+           0.0,
+           0.04,
+           0.02,
+           0.001,
+           {"tool.plugin=ball_end_constant_lead", "tool.helix_angle=0", "cutting.depth_of_cut=0.02",
+            "cutting.spindle_direction=ccw", "path.plugin=zigzag", "path.even_passes=reverse"},
+           ""},
       Case{"convex, loxodrome 30, cw, 3 teeth, ap 0.3",
            convex,
            0.0,

@@ -1,4 +1,4 @@
-// The common base of everything a plugin makes, and the six slots a model can fill.
+// The common base of everything a plugin makes, and the seven slots a model can fill.
 #pragma once
 
 #include <string>
@@ -15,7 +15,16 @@ class TOPOMILL_API Model {
   virtual ~Model();
 };
 
-enum class Slot { ToolGeometry, SurfaceShape, ForceModel, DynamicsModel, Deformation, Evaluator };
+// New slots go at the end: a slot's number is part of the plugin ABI.
+enum class Slot {
+  ToolGeometry,
+  SurfaceShape,
+  ForceModel,
+  DynamicsModel,
+  Deformation,
+  Evaluator,
+  Path
+};
 
 // "tool geometry", "surface shape", ... for messages.
 TOPOMILL_API const char* slot_name(Slot slot);

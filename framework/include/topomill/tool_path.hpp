@@ -1,5 +1,6 @@
-// The tool-centre trajectory of a raster path over a cylindrical surface (docs/model.md Eq. 13-16),
-// plus the dynamic correction TC of Eq. 32-33. Owned by the core, read by evaluators.
+// The tool-centre trajectory over a cylindrical surface (docs/model.md Eq. 13-16), from the passes
+// a path model (path_model.hpp) lays out, plus the dynamic correction TC of Eq. 32-33. Owned by
+// the core, read by evaluators.
 #pragma once
 
 #include <algorithm>
@@ -14,24 +15,27 @@ namespace topomill {
 
 class TOPOMILL_API ToolPath {
  public:
-  // Passes feed along +Y (along the curvature: the paper's raster) or along +X (across it, along
-  // the cylinder's axis).
+  // Every pass feeds along Y (the curvature: the paper's raster, forward or back) or every pass
+  // along X (across it, along the cylinder's axis).
   enum class FeedAxis { Y, X };
 
-  // One pass starts at t = 0 over the surface point (x, y_start) and ends at t_end; feeding along
-  // Y the surface point moves as y_start + vf t, feeding along X the tool moves as x + vf t.
-  // `phase` is the spindle angle at t = 0 (rad).
+  // One pass starts at t = 0 over the surface point (x, y_start) and ends at t_end; that point
+  // moves in plan along the unit (dx, dy) at the feed speed vf: (x + vf dx t, y_start + vf dy t)
+  // (the paper's feed model: uniform in Y, not along the arc). `phase` is the spindle angle at
+  // t = 0 (rad). Passes are along an axis: (0, +-1) or (+-1, 0).
   struct Pass {
     double x = 0.0;
     double y_start = 0.0;
     double t_end = 0.0;
     double phase = 0.0;
+    double dx = 0.0, dy = 1.0;
   };
 
   // `offset` is R - ap, the distance of the ball centre from the uncut surface along its normal;
   // `feed_speed` vf in mm/s; `spindle_rate` in rad/s, signed (negative = clockwise from above).
+  // Throws std::invalid_argument for a pass off the axes or passes along both.
   ToolPath(std::shared_ptr<const SurfaceShape> surface, double offset, double feed_speed,
-           double spindle_rate, std::vector<Pass> passes, FeedAxis axis = FeedAxis::Y);
+           double spindle_rate, std::vector<Pass> passes);
 
   std::size_t passes() const { return passes_.size(); }
   const Pass& pass(std::size_t p) const { return passes_[p]; }
@@ -41,8 +45,7 @@ class TOPOMILL_API ToolPath {
   const SurfaceShape& surface() const { return *surface_; }
 
   FeedAxis feed_axis() const { return axis_; }
-  // Surface point under the tool centre at time t: y_n = y_start + vf t feeding along Y (the
-  // paper's feed model: uniform in Y, not along the arc), y_start feeding along X.
+  // Surface point under the tool centre at time t (its y; x moves likewise).
   double surface_y(std::size_t p, double t) const;
   // Unit feed direction (tangent to the surface along the pass) at time t.
   Vec3 feed_direction(std::size_t p, double t) const;
