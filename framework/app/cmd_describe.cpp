@@ -17,7 +17,8 @@ std::string all_markdown(PluginCatalog& catalog) {
   out +=
       "\nAt the top level, `plugin_paths` (array of directories, relative to the scene file) adds "
       "plugin directories, searched after `--plugin-path` and before `TOPOMILL_PLUGIN_PATH` and "
-      "the built-in directory.\n";
+      "the built-in directory. `[cutting]` and `[region]` are required; `[runout]` is optional "
+      "(absent: a perfect spindle, and nothing is computed for it).\n";
   for (const auto& [name, schema] : core_schemas())
     out += "\n### [" + name + "]\n\n" + schema_markdown(schema);
   out +=
@@ -26,6 +27,7 @@ std::string all_markdown(PluginCatalog& catalog) {
       "| table | slot | when it is used |\n|---|---|---|\n"
       "| `[tool]` | tool geometry | always (required) |\n"
       "| `[workpiece]` | surface shape | always (required) |\n"
+      "| `[path]` | tool path | always (default `raster`, the paper's) |\n"
       "| `[evaluator]` | topography evaluator | always (default `tooth_passage`; `zmap` is the "
       "paper's algorithm) |\n"
       "| `[vibration]` | dynamics model | when present and not `enabled = false` |\n"

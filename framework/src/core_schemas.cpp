@@ -40,6 +40,25 @@ Schema cutting_schema() {
   return s;
 }
 
+Schema runout_schema() {
+  Schema s;
+  s.add_number("offset",
+               "Radial runout e: the tool's axis (and the ball centre) off the spindle axis, "
+               "turning with the spindle")
+      .with_unit("mm")
+      .at_least(0)
+      .at_most(1)
+      .is_required();
+  s.add_number("angle",
+               "Direction of the offset from tooth 1 (its azimuth where the lag is zero), in the "
+               "spindle's sense of turning")
+      .with_unit("deg")
+      .at_least(-360)
+      .at_most(360)
+      .with_default(0.0);
+  return s;
+}
+
 Schema region_schema() {
   Schema s;
   s.add_number("lambda",
@@ -79,11 +98,9 @@ Schema output_schema() {
 }  // namespace
 
 const std::vector<std::pair<std::string, Schema>>& core_schemas() {
-  static const std::vector<std::pair<std::string, Schema>> all = {{"scene", scene_schema()},
-                                                                  {"cutting", cutting_schema()},
-                                                                  {"region", region_schema()},
-                                                                  {"analysis", analysis_schema()},
-                                                                  {"output", output_schema()}};
+  static const std::vector<std::pair<std::string, Schema>> all = {
+      {"scene", scene_schema()},   {"cutting", cutting_schema()},   {"runout", runout_schema()},
+      {"region", region_schema()}, {"analysis", analysis_schema()}, {"output", output_schema()}};
   return all;
 }
 

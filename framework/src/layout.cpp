@@ -215,6 +215,17 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
 
   try {
     L.path = std::make_shared<ToolPath>(surface, R - ap, vf, omega, std::move(passes));
+    if (scene.has_table("runout")) {
+      const Params& runout = scene.table("runout");
+      const double e = runout.number("offset");
+      if (e >= R)
+        throw InputError(runout.where("offset"), "runout.offset",
+                         "a runout of " + format_number(e) + " mm is not below the ball radius " +
+                             format_number(R) + " mm: expected a few micrometres");
+      // Measured from tooth 1's zero-lag azimuth, turning with the spindle (its sense).
+      const double sense = omega < 0 ? -1.0 : 1.0;
+      L.path->set_runout({e, tool.tooth_angle(0) + sense * runout.number("angle") * kDeg});
+    }
   } catch (const std::invalid_argument& e) {
     throw defect(std::string("laid out passes the core cannot follow: ") + e.what());
   }

@@ -164,6 +164,7 @@ static void apply_effects(const Scene& scene, const Prepared& m, unsigned thread
       st.spindle_rate = path.spindle_rate();
       st.depth_of_cut = ap;
       st.stepover = ae;
+      st.runout = path.runout().offset, st.runout_angle = path.runout().angle;
       st.in_material = material_test(path, p, st, m.tool->radius());
       forces[p][k] = in_table(scene.slot("force"), [&] { return m.force->evaluate(*m.tool, st); });
     };

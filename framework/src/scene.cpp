@@ -39,6 +39,8 @@ const std::vector<SlotTableSpec>& slot_table_specs() {
 }
 
 const std::set<std::string> kRequiredCore = {"cutting", "region"};
+// Core tables that are left out of the scene when absent (an effect that costs nothing then).
+const std::set<std::string> kOptionalCore = {"runout"};
 
 std::string number_text(double x);
 
@@ -387,6 +389,7 @@ Scene SceneDocument::resolve(PluginCatalog& catalog, bool check_unused) const {
     if (!t && kRequiredCore.count(name))
       throw InputError(file_only, name, "missing required table [" + name + "]");
     static const toml::table empty;
+    if (!t && kOptionalCore.count(name)) continue;
     scene.core[name] = check_table(t ? *t : empty, schema, name, loc, {});
   }
 

@@ -29,10 +29,12 @@ struct SlotTable {
 struct Scene {
   std::string file;
   std::vector<std::string> plugin_paths;
-  std::map<std::string, Params> core;  // [scene], [cutting], [path], [region], [analysis], [output]
+  std::map<std::string, Params> core;  // [scene], [cutting], [runout] if given, [region], ...
   std::map<std::string, SlotTable> slots;
 
   const Params& table(const std::string& name) const { return core.at(name); }
+  // Whether an optional core table ([runout]) is in the scene.
+  bool has_table(const std::string& name) const { return core.count(name) > 0; }
   const SlotTable& slot(const std::string& name) const { return slots.at(name); }
   bool enabled(const std::string& name) const { return slots.at(name).enabled; }
   // Names of the enabled effect tables, in pipeline order.

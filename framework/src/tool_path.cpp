@@ -45,7 +45,15 @@ Vec3 ToolPath::nominal_centre(std::size_t p, double t) const {
   const double y = surface_y(p, t);
   const double lambda = surface_->inclination(y);
   const double x = passes_[p].x + feed_speed_ * (passes_[p].dx * t);
-  return {x, y + offset_ * std::sin(lambda), surface_->height(y) + offset_ * std::cos(lambda)};
+  Vec3 k{x, y + offset_ * std::sin(lambda), surface_->height(y) + offset_ * std::cos(lambda)};
+  if (runout_.offset > 0) k += runout_offset(p, t);  // (none: not even a zero, so the bits stay)
+  return k;
+}
+
+Vec3 ToolPath::runout_offset(std::size_t p, double t) const {
+  if (!(runout_.offset > 0)) return Vec3::Zero();
+  const double a = spindle_angle(p, t) + runout_.angle;
+  return {runout_.offset * std::cos(a), runout_.offset * std::sin(a), 0.0};
 }
 
 Vec3 ToolPath::correction(std::size_t p, double t) const {

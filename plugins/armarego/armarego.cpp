@@ -15,8 +15,8 @@ namespace topomill::plugins {
 // n = (sin a cos phi, sin a sin phi, -cos a), the meridian tangent a = dn/d(alpha) =
 // (cos a cos phi, cos a sin phi, sin a) and the cutting direction v = s (-sin phi, cos phi, 0)
 // (s = +1 counter-clockwise). Its force on the tool is -dFt v - dFr n - dFa a: Eq. 20 in these
-// vectors, which reproduces docs/model.md's closed form (tested). Chip thickness t = max(0, fz f.n).
-// Elements count when they face the feed (t > 0), lie in the CATW and, when the core says so
+// vectors, which reproduces docs/model.md's closed form (tested). Chip thickness t = max(0, fz
+// f.n). Elements count when they face the feed (t > 0), lie in the CATW and, when the core says so
 // (CutState::in_material), are in material: below the uncut surface, not removed by the
 // previous pass.
 class Armarego : public ForceModel {
@@ -74,6 +74,14 @@ class Armarego : public ForceModel {
       const double angle = tool.tooth_angle(j) + st.spindle_angle;
       tooth_cos[j] = std::cos(angle), tooth_sin[j] = std::sin(angle);
     }
+    // Runout: the ball centre is e off the spindle axis towards psi (now) and psi minus a tooth's
+    // turn (when the tooth before passed where this one is), so an element at azimuth phi
+    // reaches e (cos(psi - phi) - cos(psi_before - phi)) further out than the one before it
+    // did, and sin(alpha) of that along its normal: the chip grows or shrinks by as much.
+    const double psi = st.spindle_angle + st.runout_angle;
+    const double psi_before = psi - sense * 2 * M_PI / teeth;
+    const double run_c = st.runout * (std::cos(psi) - std::cos(psi_before));
+    const double run_s = st.runout * (std::sin(psi) - std::sin(psi_before));
     const double lo = std::max(0.0, st.alpha_min), hi = std::min(M_PI / 2, st.alpha_max);
     CuttingForce out;
     if (!(hi > lo)) return out;
@@ -94,7 +102,8 @@ class Armarego : public ForceModel {
         const double sp = tooth_sin[j] * el.cl + tooth_cos[j] * el.sl;
         const Vec3 n(el.sa * cp, el.sa * sp, -el.ca), m(el.ca * cp, el.ca * sp, el.sa),
             v(-sense * sp, sense * cp, 0);
-        const double t = st.feed_per_tooth * st.feed_direction.dot(n);
+        const double t =
+            st.feed_per_tooth * st.feed_direction.dot(n) + el.sa * (run_c * cp + run_s * sp);
         if (t <= 0) continue;  // not in cut: the element faces away from the feed
         if (st.in_material && !st.in_material(R * n)) continue;  // air: above or already cut
         const double ft = kte_ * ds + ktc_ * t * db, fr = kre_ * ds + krc_ * t * db,

@@ -25,8 +25,8 @@ double node_height_reference(const PassageSetup& s, double x, double y, NodeCoun
     // moved by the correction's whole range) has a single minimum, near the ball's lowest
     // passage over the node.
     const double t_b = geo.bottom_near([&](double t) { return geo.bound(t); }, t0);
-    const double slack = s.path->corrected() ? 1e-9 : 0.0;  // as the row walk's
-    if (geo.bound(t_b) - slack >= best) continue;           // this pass cannot lower the node
+    const double slack = s.wiggles ? 1e-9 : 0.0;   // as the row walk's
+    if (geo.bound(t_b) - slack >= best) continue;  // this pass cannot lower the node
     best = std::min(best, geo.walk(t_b, roots, counts.passages, best));
     if (entry.first < PassageGeometry::kOnAxis) best = std::min(best, geo.tip_height(t0));
   }

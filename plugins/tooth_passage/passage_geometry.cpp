@@ -29,7 +29,9 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
       teeth(rq.tool->teeth()),
       along_y(rq.path->feed_axis() == ToolPath::FeedAxis::Y),
       stop(rq.stop),
-      lag_shape(*rq.tool) {
+      lag_shape(*rq.tool),
+      wiggles(rq.path->corrected() || rq.path->runout().offset > 0),
+      runout(rq.path->runout().offset) {
   for (int j = 0; j < teeth; ++j) tooth_angle.push_back(tool->tooth_angle(j));
   sin_tip = std::sin(tool->min_polar_angle());
   lag_tip = tool->lag(tool->min_polar_angle());
@@ -41,7 +43,8 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     line.push_back(along_y ? c0.x() : c0.y());
     // The correction is linear between its samples and held beyond: its range is theirs.
     const auto [lo, hi] = centre.back().correction_box(-INFINITY, INFINITY);
-    shift_lo.push_back(lo), shift_hi.push_back(hi);
+    shift_lo.push_back(lo - Vec3(runout, runout, 0)),
+        shift_hi.push_back(hi + Vec3(runout, runout, 0));
     lowest_centre.push_back(centre.back().lowest_z(0.0, path->pass(p).t_end));
     nominal_speed.push_back(centre.back().top_speed());
     const double v = top_speed(p, -INFINITY, INFINITY).first, half = 0.5 * rev;

@@ -49,8 +49,13 @@ struct PassageSetup {
   LagShape lag_shape;               // bounds of the lag's turn, for the phase bounds
   std::vector<CentreTable> centre;  // per pass
   std::vector<double> line;         // per pass: its nominal x (feeding along Y) or y
-  // Per pass, the range of the correction over the pass (zero when ideal): wherever the
-  // corrected centre is, it is within [shift_lo, shift_hi] of the nominal one.
+  // Whether the centre moves about a smooth path, by the correction (at the tooth period) or the
+  // runout (a circle of radius `runout` at the spindle's rate): then the envelope wiggles and has
+  // dips anywhere, and the walks bound passages by its floor instead (floor_envelope).
+  bool wiggles;
+  double runout;  // mm
+  // Per pass, the range of the correction over the pass and the runout's (zero when ideal):
+  // wherever the centre is, it is within [shift_lo, shift_hi] of the spindle axis's nominal one.
   std::vector<Vec3> shift_lo, shift_hi;
   std::vector<double> lowest_centre;  // per pass, a lower bound of the corrected centre's height
 
@@ -171,10 +176,12 @@ class PassageGeometry {
     return std::abs(std::abs(advance(ta, a, tb, b) + advance(tb, b, tc, c)) - turn) < 1e-6;
   }
 
-  // A lower bound of envelope(t) whatever the correction within the pass's range: the nominal
-  // centre moved by the range's lowest z and as close to the node as the range allows.
+  // A lower bound of envelope(t) whatever the correction and the runout within their ranges: the
+  // spindle axis's nominal centre moved by the range's lowest z and as close to the node as the
+  // range allows. It has a single minimum, as the ideal envelope.
   double floor_envelope(double t) const {
-    const Vec3 c = table_.nominal(t);
+    const Vec3 c = s_.runout > 0 ? Vec3(table_.nominal(t) - s_.path->runout_offset(pass_, t))
+                                 : table_.nominal(t);
     const Vec3 &lo = s_.shift_lo[pass_], &hi = s_.shift_hi[pass_];
     const double dx = x_ - c.x(), dy = y_ - c.y();
     const double ex = dx - std::clamp(dx, lo.x(), hi.x()), ey = dy - std::clamp(dy, lo.y(), hi.y());
@@ -301,8 +308,8 @@ class PassageGeometry {
   double solve_bracket(int tooth, double lo, double hi, double g_lo, double g_hi) const;
 
   // A true lower bound of every crossing's height at time t with a single minimum: the envelope
-  // itself when ideal, its floor when corrected.
-  double bound(double t) const { return s_.path->corrected() ? floor_envelope(t) : envelope(t); }
+  // itself when ideal, its floor when it wiggles.
+  double bound(double t) const { return s_.wiggles ? floor_envelope(t) : envelope(t); }
 
   // The tip is a point of every edge, and g jumps by pi (not through zero) where the axis passes
   // over the node: a node on the pass's line, which the axis passes within kOnAxis of at t0

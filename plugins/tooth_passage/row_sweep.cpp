@@ -38,7 +38,7 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
   const auto n = static_cast<std::ptrdiff_t>(by_line_.size());
   // A pass that cannot lower the node ends its side; with a correction (each pass has its own),
   // only the second in a row does.
-  const int misses_to_stop = s_.path->corrected() ? 2 : 1;
+  const int misses_to_stop = s_.wiggles ? 2 : 1;
   for (std::size_t i = 0; i < xs.size(); ++i) {
     if (s_.stopped()) return;  // the map is discarded
     const double x = xs[i], key = s_.along_y ? x : y;
@@ -52,7 +52,7 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
     bool left_open = left >= 0, right_open = right < n;
     // Corrected: the passage that was lowest at the node before, solved here first, gives a
     // height to bound all others by from the start (it is a real crossing of this node).
-    double best = s_.path->corrected() ? seed(x, y, counts) : INFINITY;
+    double best = s_.wiggles ? seed(x, y, counts) : INFINITY;
     const std::size_t seeded = win_pass_;
     int misses[2] = {0, 0};
     while (left_open || right_open) {
@@ -97,7 +97,7 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
     st.rho_lo = radii.first, st.rho_hi = radii.second, st.active = true;
   }
   const PassageGeometry geo(s_, p, x, y, st.rho_lo, st.rho_hi);
-  const bool ideal = !s_.path->corrected();
+  const bool ideal = !s_.wiggles;
   double t_b;
   if (ideal) {
     // The envelope has a single minimum: its bottom, followed from node to node, is the pass's
@@ -425,13 +425,15 @@ double RowSweep::floor_steepness(std::size_t p, double below) const {
 //   |dE/dx| + |dE/dt| |dt/dx| <= tan(alpha) + (vz + tan(alpha) vxy) bx,
 // where bx = |g_x| / |g_t| bounds the root's move: |g_x| <= 1/rho + k (the node's azimuth and the
 // lag, k = |lag'| / (R cos alpha)), |g_t| >= |omega| - vxy sqrt(1/rho^2 + k^2). All with the
-// centre's top speeds (vxy, vz) over a window of eight correction steps either side of the root
+// centre's top speeds (vxy, vz) over a window either side of the root (eight correction steps)
 // and rho over what the node and the axis can move in it, so the bound holds while the root stays
 // in the window (reach = window / bx) and the node within kReach. Where the correction jerks the
 // axis sideways faster than the edge sweeps (|g_t| could vanish), there is no bound.
 double RowSweep::fall_rate(std::size_t p, double t, double rho, double& reach) const {
-  constexpr double kReach = 0.05;                    // mm along the row
-  const double w = 8 * s_.path->correction_step(p);  // the window either side of t
+  constexpr double kReach = 0.05;  // mm along the row
+  // The window either side of t: eight correction steps, or with none (a runout alone) a
+  // quarter revolution, within which the next node's root stays.
+  const double step = s_.path->correction_step(p), w = step > 0 ? 8 * step : 0.25 * s_.rev;
   const auto [vxy, vz] = s_.top_speed(p, t - w, t + w);
   const double rho_lo = rho - vxy * w - kReach, rho_hi = rho + vxy * w + kReach;
   if (rho_lo <= 0 || rho_hi >= 0.95 * s_.R) return INFINITY;

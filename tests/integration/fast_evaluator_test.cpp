@@ -185,6 +185,11 @@ TEST_CASE("both walks find the lowest crossing that a brute-force scan finds",
            patch(0.0) + kDynamics,
            {"path.plugin=zigzag", "path.even_passes=reverse"}},
       Case{"zigzag across at 30 deg", patch(30.0), {"path.plugin=zigzag", "path.feed_axis=x"}},
+      // The runout moves the centre round a circle every revolution: the envelope dips with it.
+      Case{"runout 4 um on the slope", patch(30.0), {"runout.offset=0.004"}},
+      Case{"runout 5 um at the tip, vibration and deflection",
+           patch(0.0) + kDynamics,
+           {"runout.offset=0.005", "runout.angle=40"}},
       Case{"the paper's dynamics at the tip",
            read_file(source_dir() + "/configs/paper/lambda30_fz01_dynamics.toml"),
            {"region.lambda=0", "region.size=[0.4,0.4]", "region.spacing=0.017"}});

@@ -10,8 +10,8 @@
 using testing::make_model;
 
 namespace {
-// docs/model.md: zero helix, no edge forces, one tooth, alpha in [0, kappa_m], flat slot fed along +X,
-// theta measured clockwise from +Y, chip thickness fz sin(theta) sin(alpha).
+// docs/model.md: zero helix, no edge forces, one tooth, alpha in [0, kappa_m], flat slot fed along
+// +X, theta measured clockwise from +Y, chip thickness fz sin(theta) sin(alpha).
 Eigen::Vector3d closed_form(double theta, double R, double fz, double ktc, double krc, double kac,
                             double km) {
   const double ap = R * (1 - std::cos(km));
@@ -85,8 +85,8 @@ struct Quadrature {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   double load_centre = 0;
 };
-// Eq. 18-21 by a midpoint rule of 20000 pieces per tooth, written from docs/model.md and not from the
-// plugin: the element's azimuth and its edge length from edge_point (a central difference for
+// Eq. 18-21 by a midpoint rule of 20000 pieces per tooth, written from docs/model.md and not from
+// the plugin: the element's azimuth and its edge length from edge_point (a central difference for
 // the length), Eq. 19's chip as the feed projected on the ball normal, Eq. 20 in Lee and
 // Altintas' angle theta (clockwise from +Y, a cw tool). A ccw tool is the mirror image (x -> -x)
 // of a cw one: its element at azimuth phi is the cw element at pi - phi under the mirrored feed,
@@ -187,5 +187,66 @@ TEST_CASE("one force model serves two tools, each with its own edge", "[force]")
                                                    {{"radius", 5}, {"helix_angle", helix}});
     auto fresh = make_model<topomill::ForceModel>("armarego", {});
     CHECK(force->evaluate(*tool, st).force == fresh->evaluate(*tool, st).force);
+  }
+}
+
+TEST_CASE("runout thickens the chip by how much farther a tooth reaches than the one before",
+          "[force][runout]") {
+  // Helix-free teeth, fed along +X, tooth 1 (j = 0) pointing along the feed. With the ball centre
+  // e off the spindle axis towards tooth 1, an element at azimuth phi reaches e cos(psi - phi)
+  // out, where the tooth before it at the same place reached e cos(psi_before - phi), psi_before
+  // = psi - 2 pi / N in the spindle's sense: the chip grows by the difference times sin(alpha).
+  // Two teeth: tooth 1 reaches 2e farther than tooth 2 did, so it cuts as the runout-free tool
+  // does at fz + 2e (and at fz - 2e with the offset turned half round, towards tooth 2); the
+  // other tooth, pointing back, is out of the cut either way.
+  // Four teeth: tooth 1 reaches e farther (fz + e); the tooth a quarter turn behind it in the
+  // spindle's sense (at +90 deg when turning clockwise, -90 counter-clockwise) reached e farther
+  // towards its own azimuth then than it does now, and is out; the one a quarter turn ahead
+  // reaches e farther than its predecessor did, across the feed: it cuts as a runout-free tool
+  // fed towards it at e does.
+  auto force = closed_form_force(0.0045);
+  const double fz = 0.1, e = 0.004;
+  for (int teeth : {2, 4}) {
+    auto tool = make_model<topomill::ToolGeometry>(
+        "ball_end_constant_lead", {{"radius", 5}, {"teeth", teeth}, {"helix_angle", 0}});
+    for (double rate : {-1.0, 1.0}) {
+      INFO(teeth << " teeth, spindle rate " << rate);
+      auto state = [&](const topomill::Vec3& feed, double feed_per_tooth, double runout,
+                       double angle) {
+        topomill::CutState st = cut_state(feed, 0, M_PI / 2);
+        st.spindle_rate = rate;
+        st.feed_per_tooth = feed_per_tooth;
+        st.spindle_angle = -tool->tooth_angle(0);  // tooth 1 along +X
+        st.runout = runout;
+        st.runout_angle = tool->tooth_angle(0) + angle;
+        return st;
+      };
+      const topomill::Vec3 along(1, 0, 0), ahead(0, rate, 0);
+      auto f = [&](const topomill::CutState& st) { return force->evaluate(*tool, st).force; };
+      const topomill::Vec3 with = f(state(along, fz, e, 0));
+      const topomill::Vec3 want =
+          teeth == 2 ? f(state(along, fz + 2 * e, 0, 0))
+                     : topomill::Vec3(f(state(along, fz + e, 0, 0)) + f(state(ahead, e, 0, 0)));
+      CHECK((with - want).norm() <= 1e-9 * want.norm());
+      if (teeth == 2) {
+        const topomill::Vec3 turned = f(state(along, fz, e, M_PI)),
+                             less = f(state(along, fz - 2 * e, 0, 0));
+        CHECK((turned - less).norm() <= 1e-9 * less.norm());
+      }
+    }
+  }
+}
+
+TEST_CASE("with one tooth runout leaves the chip as it is", "[force][runout]") {
+  // The tooth before is the same tooth a turn earlier, offset the same way: no reach gained.
+  auto force = closed_form_force(0.0045);
+  auto tool = closed_form_tool();
+  topomill::CutState st = cut_state({1, 0, 0}, 0, M_PI / 2);
+  for (double angle : {0.0, 1.0, 2.5, 4.0}) {
+    st.spindle_angle = angle;
+    st.runout = 0;
+    const topomill::Vec3 plain = force->evaluate(*tool, st).force;
+    st.runout = 0.01, st.runout_angle = 0.7;
+    CHECK((force->evaluate(*tool, st).force - plain).norm() <= 1e-9 * (1 + plain.norm()));
   }
 }

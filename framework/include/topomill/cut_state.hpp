@@ -22,6 +22,11 @@ struct CutState {
   // the uncut surface and outside what the previous pass removed. Set by the core; empty means
   // "every point of the CATW", as in the paper's Eq. 21.
   std::function<bool(const Vec3& offset)> in_material;
+  // Radial runout (ToolPath::Runout): the ball centre `runout` mm off the spindle axis towards
+  // spindle_angle + runout_angle. Each tooth's reach then differs from the one before it, and
+  // so its chip (the force model's business; the path already carries the offset).
+  double runout = 0.0;        // mm
+  double runout_angle = 0.0;  // rad
 };
 
 // Resultant cutting force on the tool (N, CS2) and the load centre: the force-weighted mean

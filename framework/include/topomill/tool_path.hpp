@@ -49,7 +49,7 @@ class TOPOMILL_API ToolPath {
   double surface_y(std::size_t p, double t) const;
   // Unit feed direction (tangent to the surface along the pass) at time t.
   Vec3 feed_direction(std::size_t p, double t) const;
-  // Ideal ball centre K (Eq. 15).
+  // Ideal ball centre K (Eq. 15), moved by the runout.
   Vec3 nominal_centre(std::size_t p, double t) const;
   // Ball centre with the correction of Eq. 32-33 added (linear between correction samples).
   Vec3 centre(std::size_t p, double t) const;
@@ -78,6 +78,19 @@ class TOPOMILL_API ToolPath {
     return passes_[p].phase + spindle_rate_ * t;
   }
 
+  // Radial runout: the tool's axis, and with it the ball centre, `offset` (mm) off the spindle
+  // axis in the plane normal to it, in the direction spindle_angle + `angle`: it turns with the
+  // spindle. Part of the nominal path (kinematics, not a response to force); none by default.
+  struct Runout {
+    double offset = 0.0;
+    double angle = 0.0;  // rad, the offset's direction when the spindle angle is 0
+  };
+  void set_runout(const Runout& r) { runout_ = r; }
+  const Runout& runout() const { return runout_; }
+  // The runout's part of the nominal centre at t: the offset in its current direction (zero
+  // when there is none).
+  Vec3 runout_offset(std::size_t p, double t) const;
+
   // Corrections sampled every `dt` from t = 0 of pass p; beyond the last sample it is held.
   void set_correction(std::size_t p, double dt, std::vector<Vec3> samples);
   bool corrected() const { return corrected_; }
@@ -90,6 +103,7 @@ class TOPOMILL_API ToolPath {
   std::vector<Pass> passes_;
   FeedAxis axis_;
   std::vector<Correction> corrections_;
+  Runout runout_;
   bool corrected_ = false;
   double max_correction_ = 0.0;
 };
