@@ -26,9 +26,12 @@ cmake --build "$work/template" >/dev/null
 
 topomill=$prefix/bin/topomill
 scene=$src/sdk/template/scenes/example.toml
-"$topomill" plugins --plugin-path "$work/template" | grep -q "ball_end_worn" || fail "not listed"
-"$topomill" describe ball_end_worn --plugin-path "$work/template" | grep -q "wear (number, mm" \
-  || fail "describe does not show the schema"
+# Each listing is read whole before it is searched: `grep -q` leaves at its first match, and under
+# pipefail the writer's SIGPIPE on the rest of a long listing failed the check at random.
+listing=$("$topomill" plugins --plugin-path "$work/template") || fail "plugins exited $?"
+grep -q "ball_end_worn" <<<"$listing" || fail "not listed"
+schema=$("$topomill" describe ball_end_worn --plugin-path "$work/template") || fail "describe exited $?"
+grep -q "wear (number, mm" <<<"$schema" || fail "describe does not show the schema"
 "$topomill" run "$scene" -q --plugin-path "$work/template" --out "$work/out1" >/dev/null \
   || fail "run with --plugin-path"
 grep -q '"library": "'"$work"'/template/libtopomill_ball_end_worn.so"' "$work/out1/summary.json" \
