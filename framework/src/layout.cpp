@@ -37,6 +37,34 @@ double y_at_arc(const SurfaceShape& surface, double s, double y_guess, double sp
   return 0.5 * (lo + hi);
 }
 
+// A tilted tool: only the ball may cut (the contact range within the ball's lower half, about
+// the axis), and the steepest contact sets the evaluators' steps (lambda_max). The contact angle
+// is the angle between the axis and the normal: fixed, it varies with the surface along the pass;
+// normal, it is constant. Either way it is largest at a pass's ends or its middle on the
+// surfaces here (their inclination is monotone in y), and the CATW margin stands for the rest.
+static void check_posture(const ToolPath& path, Layout& L, const SlotTable& slot) {
+  L.lambda_max = 0;  // the contact's polar angle about the axis, no longer the inclination
+  for (std::size_t p = 0; p < path.passes(); ++p) {
+    const double t_end = path.pass(p).t_end;
+    for (double t : {0.0, 0.5 * t_end, t_end}) {
+      const double angle = path.contact_angle(p, t);
+      L.lambda_max = std::max(L.lambda_max, angle);
+      if (angle + L.kappa < M_PI / 2) continue;
+      const char* key = slot.params.has("tilt") && slot.params.number("tilt") != 0 ? "tilt"
+                        : slot.params.has("lead")                                  ? "lead"
+                                                                                   : nullptr;
+      throw InputError(
+          key ? slot.params.where(key) : slot.where,
+          key ? "path." + std::string(key) : std::string("path"),
+          "the tool's axis is " + format_number(angle / kDeg) +
+              " deg from the surface normal at y = " + format_number(path.surface_y(p, t)) +
+              " mm, and with the cut's half-width of " + format_number(L.kappa / kDeg) +
+              " deg the ball's equator would cut (the shank above it would "
+              "rub): expected a smaller lead or tilt");
+    }
+  }
+}
+
 Layout make_layout(const Scene& scene, const ToolGeometry& tool,
                    std::shared_ptr<const SurfaceShape> surface, const PathModel& path_model) {
   const Params& cut = scene.table("cutting");
@@ -187,14 +215,16 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   double y_first = INFINITY, y_last = -INFINITY, reach = 0;
   for (const PassLine& l : lines) {
     const double along_x = l.x1 - l.x0, along_y = l.y1 - l.y0;
-    if (!(std::isfinite(along_x) && std::isfinite(along_y) && std::isfinite(l.phase)))
-      throw defect("laid out a pass with a coordinate or phase that is not finite");
+    if (!(std::isfinite(along_x) && std::isfinite(along_y) && std::isfinite(l.phase) &&
+          std::isfinite(l.posture.lead) && std::isfinite(l.posture.tilt)))
+      throw defect("laid out a pass with a coordinate, phase or posture that is not finite");
     if ((along_x != 0) == (along_y != 0))
       throw defect("laid out a pass that is not along X or Y, or has no length");
     // One of the two is zero: the sum is the length exactly.
-    ToolPath::Pass p{l.x0, l.y0, (std::abs(along_x) + std::abs(along_y)) / vf, l.phase};
+    ToolPath::Pass p{l.x0, l.y0, (std::abs(along_x) + std::abs(along_y)) / vf, l.phase, 0, 0, {}};
     p.dx = along_x > 0 ? 1 : along_x < 0 ? -1 : 0;
     p.dy = along_y > 0 ? 1 : along_y < 0 ? -1 : 0;
+    p.posture = l.posture;
     passes.push_back(p);
     y_first = std::min({y_first, l.y0, l.y1}), y_last = std::max({y_last, l.y0, l.y1});
     if (along_y != 0) reach = 2 * fz * teeth;
@@ -229,6 +259,7 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   } catch (const std::invalid_argument& e) {
     throw defect(std::string("laid out passes the core cannot follow: ") + e.what());
   }
+  if (!L.path->vertical()) check_posture(*L.path, L, path_slot);
   return L;
 }
 

@@ -81,6 +81,16 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
     if (scene.enabled(name))
       out.deformations.emplace_back(name, make<Deformation>(scene, catalog, name));
   out.layout = make_layout(scene, *out.tool, out.surface, *out.path);
+  if (!out.layout.path->vertical() && !out.evaluator->follows_tilted_tool()) {
+    const SlotTable &path = scene.slot("path"), &evaluator = scene.slot("evaluator");
+    const char* key = path.params.has("tilt") && path.params.number("tilt") != 0 ? "tilt" : "lead";
+    throw InputError(path.params.has(key) ? path.params.where(key) : path.where,
+                     "path." + std::string(key),
+                     "the evaluator '" + evaluator.plugin +
+                         "' follows a vertical tool only, and this path tilts it: expected "
+                         "lead = tilt = 0 with posture = \"fixed\", or evaluator.plugin = "
+                         "\"zmap\"");
+  }
   const EvaluationCost cost = evaluation_cost(out, threads);
   check_memory(scene, out, cost, threads, available_memory());
   check_duration(scene, cost, threads);
@@ -125,6 +135,20 @@ std::function<bool(const Vec3&)> material_test(const ToolPath& path, std::size_t
   };
 }
 
+// A tilted tool's state as the force and deformation models read it: in the tool frame (its axis
+// as z, the spindle angle measured about it), the feed direction turned into it, the contact's
+// polar angle about the axis for the surface's inclination, and the material test turned back.
+void to_tool_frame(const ToolPath& path, std::size_t p, double kappa, CutState& st) {
+  const Eigen::Matrix3d q = path.tool_frame(p, st.time);
+  st.feed_direction = q.transpose() * st.feed_direction;
+  st.inclination = path.contact_angle(p, st.time);
+  st.alpha_min = std::max(0.0, st.inclination - kappa);
+  st.alpha_max = std::min(M_PI / 2, st.inclination + kappa);
+  st.in_material = [q, world = std::move(st.in_material)](const Vec3& offset) {
+    return world(q * offset);
+  };
+}
+
 }  // namespace
 
 // Forces on a time grid chosen for the dynamics, the response, the deformations, and their sum
@@ -166,7 +190,10 @@ static void apply_effects(const Scene& scene, const Prepared& m, unsigned thread
       st.stepover = ae;
       st.runout = path.runout().offset, st.runout_angle = path.runout().angle;
       st.in_material = material_test(path, p, st, m.tool->radius());
+      if (!path.pass(p).posture.vertical()) to_tool_frame(path, p, L.kappa, st);
       forces[p][k] = in_table(scene.slot("force"), [&] { return m.force->evaluate(*m.tool, st); });
+      if (!path.pass(p).posture.vertical())
+        forces[p][k].force = path.tool_frame(p, st.time) * forces[p][k].force;
     };
     std::vector<std::exception_ptr> errors(blocks.size());
     std::atomic<std::size_t> next{0};
@@ -213,11 +240,20 @@ static void apply_effects(const Scene& scene, const Prepared& m, unsigned thread
     clock.run("deformation", [&] {
       for (const auto& named : m.deformations) {
         const Deformation& model = *named.second;  // (C++17 lambdas cannot capture a binding)
-        for (std::size_t p = 0; p < path.passes(); ++p)
-          for (std::size_t k = 0; k < states[p].size(); ++k)
-            corrections[p][k] += in_table(scene.slot(named.first), [&] {
-              return model.correction(forces[p][k], *m.tool, states[p][k]);
-            });
+        for (std::size_t p = 0; p < path.passes(); ++p) {
+          const bool vertical = path.pass(p).posture.vertical();
+          for (std::size_t k = 0; k < states[p].size(); ++k) {
+            // Models see the state and the force in the tool frame, as the force model does,
+            // and their correction comes back in it.
+            CuttingForce f = forces[p][k];
+            Eigen::Matrix3d q;
+            if (!vertical)
+              q = path.tool_frame(p, states[p][k].time), f.force = q.transpose() * f.force;
+            const Vec3 c = in_table(scene.slot(named.first),
+                                    [&] { return model.correction(f, *m.tool, states[p][k]); });
+            corrections[p][k] += vertical ? c : Vec3(q * c);
+          }
+        }
       }
     });
   }

@@ -1,5 +1,7 @@
 #include "topomill/tool_path.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -22,6 +24,7 @@ ToolPath::ToolPath(std::shared_ptr<const SurfaceShape> surface, double offset, d
       throw std::invalid_argument("a pass's feed direction (" + std::to_string(p.dx) + ", " +
                                   std::to_string(p.dy) + ") is not along X or Y");
     along_y = along_y || y, along_x = along_x || x;
+    vertical_ = vertical_ && p.posture.vertical();
   }
   if (along_x && along_y) throw std::invalid_argument("passes feed along both X and Y");
   if (along_x) axis_ = FeedAxis::X;
@@ -53,7 +56,42 @@ Vec3 ToolPath::nominal_centre(std::size_t p, double t) const {
 Vec3 ToolPath::runout_offset(std::size_t p, double t) const {
   if (!(runout_.offset > 0)) return Vec3::Zero();
   const double a = spindle_angle(p, t) + runout_.angle;
-  return {runout_.offset * std::cos(a), runout_.offset * std::sin(a), 0.0};
+  const Vec3 local(runout_.offset * std::cos(a), runout_.offset * std::sin(a), 0.0);
+  return vertical_ ? local : Vec3(tool_frame(p, t) * local);
+}
+
+Vec3 ToolPath::axis(std::size_t p, double t) const {
+  const Pass& pass = passes_[p];
+  const Posture& q = pass.posture;
+  if (q.vertical()) return Vec3::UnitZ();
+  const double cl = std::cos(q.lead), sl = std::sin(q.lead), ct = std::cos(q.tilt),
+               st = std::sin(q.tilt);
+  if (!q.normal) {
+    // Fixed: about the pass's feed in plan F and C = F x Z.
+    const Vec3 F(pass.dx, pass.dy, 0.0), C(pass.dy, -pass.dx, 0.0);
+    return (ct * (cl * Vec3::UnitZ() + sl * F) + st * C).normalized();
+  }
+  // Normal: about the outward normal n at the contact point, the feed f along the surface and
+  // c = f x n.
+  const double lambda = surface_->inclination(surface_y(p, t));
+  const Vec3 n(0.0, std::sin(lambda), std::cos(lambda)), f = feed_direction(p, t);
+  return (ct * (cl * n + sl * f) + st * f.cross(n)).normalized();
+}
+
+Eigen::Matrix3d ToolPath::tool_frame(std::size_t p, double t) const {
+  if (passes_[p].posture.vertical()) return Eigen::Matrix3d::Identity();
+  const Vec3 a = axis(p, t);
+  const Vec3 x = (Vec3::UnitX() - a.x() * a).normalized();  // a is kept off X (layout)
+  Eigen::Matrix3d q;
+  q.col(0) = x, q.col(1) = a.cross(x), q.col(2) = a;
+  return q;
+}
+
+double ToolPath::contact_angle(std::size_t p, double t) const {
+  const double lambda = surface_->inclination(surface_y(p, t));
+  if (passes_[p].posture.vertical()) return std::abs(lambda);
+  const Vec3 n(0.0, std::sin(lambda), std::cos(lambda));
+  return std::acos(std::clamp(n.dot(axis(p, t)), -1.0, 1.0));
 }
 
 Vec3 ToolPath::correction(std::size_t p, double t) const {

@@ -27,6 +27,34 @@ struct PassPhase {
       : start(p.number("start_angle") * M_PI / 180), shift(p.number("phase_shift") * M_PI / 180) {}
 };
 
+// The tool's posture on every pass (docs/model.md, "Tool posture").
+struct PassPosture {
+  static void add_keys(Schema& s) {
+    s.add_number("lead",
+                 "Lead angle: the tool axis leaned forward along each pass's feed (0: vertical, "
+                 "or along the normal with posture = normal)")
+        .with_unit("deg")
+        .at_least(-80)
+        .at_most(80)
+        .with_default(0.0);
+    s.add_number("tilt", "Tilt angle: the tool axis leaned sideways, towards feed x normal")
+        .with_unit("deg")
+        .at_least(-80)
+        .at_most(80)
+        .with_default(0.0);
+    s.add_choice("posture", {"fixed", "normal"},
+                 "fixed: lead and tilt from the vertical, the axis fixed over each pass (3-axis, "
+                 "a tilted head); normal: from the surface normal at the contact point (5-axis)")
+        .with_default(std::string("fixed"));
+  }
+  static ToolPath::Posture from(const Params& p) {
+    ToolPath::Posture q;
+    q.lead = p.number("lead") * M_PI / 180, q.tilt = p.number("tilt") * M_PI / 180;
+    q.normal = p.string("posture") == "normal";
+    return q;
+  }
+};
+
 // Parallel passes, the paper's raster: feeding along Y and stepping along X by ae from one
 // step-over before the patch to one after, each running `run` past the patch at both ends; or
 // (across) feeding along X and stepping along the surface by the arc length ae, centred on the
@@ -35,7 +63,7 @@ struct PassPhase {
 // first pass laid out, whichever way it feeds.
 template <class Reversed>
 std::vector<PassLine> parallel_passes(const PathRequest& rq, bool across, const PassPhase& phase,
-                                      Reversed reversed) {
+                                      const ToolPath::Posture& posture, Reversed reversed) {
   const double ae = rq.stepover;
   std::vector<PassLine> passes;
   if (!across) {
@@ -46,9 +74,9 @@ std::vector<PassLine> parallel_passes(const PathRequest& rq, bool across, const 
       const double x = static_cast<double>(k) * ae;
       const double angle = phase.start + static_cast<double>(k - k_lo) * phase.shift;
       if (reversed(k))
-        passes.push_back({x, y_last, x, y_first, angle});
+        passes.push_back({x, y_last, x, y_first, angle, posture});
       else
-        passes.push_back({x, y_first, x, y_last, angle});
+        passes.push_back({x, y_first, x, y_last, angle, posture});
     }
   } else {
     const long k_lo = static_cast<long>(std::floor((rq.s_lo - rq.s_c) / ae)) - 1;
@@ -60,9 +88,9 @@ std::vector<PassLine> parallel_passes(const PathRequest& rq, bool across, const 
       const double y = y_at_arc(*rq.surface, rq.s_c + static_cast<double>(k) * ae, rq.y_c, span_k);
       const double angle = phase.start + static_cast<double>(k - k_lo) * phase.shift;
       if (reversed(k))
-        passes.push_back({x_last, y, x_first, y, angle});
+        passes.push_back({x_last, y, x_first, y, angle, posture});
       else
-        passes.push_back({x_first, y, x_last, y, angle});
+        passes.push_back({x_first, y, x_last, y, angle, posture});
     }
   }
   return passes;
@@ -75,16 +103,18 @@ class OneWay : public PathModel {
   static Schema schema() {
     Schema s;
     PassPhase::add_keys(s);
+    PassPosture::add_keys(s);
     return s;
   }
-  explicit OneWay(const Params& p) : phase_(p) {}
+  explicit OneWay(const Params& p) : phase_(p), posture_(PassPosture::from(p)) {}
 
   std::vector<PassLine> passes(const PathRequest& rq) const override {
-    return parallel_passes(rq, Across, phase_, [](long) { return false; });
+    return parallel_passes(rq, Across, phase_, posture_, [](long) { return false; });
   }
 
  private:
   PassPhase phase_;
+  ToolPath::Posture posture_;
 };
 
 }  // namespace topomill::plugins

@@ -17,21 +17,24 @@ class Zigzag : public PathModel {
                  "from it: forward (+Y, or +X) or reverse; the others go the other way")
         .with_default(std::string("forward"));
     PassPhase::add_keys(s);
+    PassPosture::add_keys(s);
     return s;
   }
   explicit Zigzag(const Params& p)
       : across_(p.string("feed_axis") == "x"),
         even_back_(p.string("even_passes") == "reverse"),
-        phase_(p) {}
+        phase_(p),
+        posture_(PassPosture::from(p)) {}
 
   std::vector<PassLine> passes(const PathRequest& rq) const override {
-    return parallel_passes(rq, across_, phase_,
+    return parallel_passes(rq, across_, phase_, posture_,
                            [this](long k) { return (k % 2 != 0) != even_back_; });
   }
 
  private:
   bool across_, even_back_;
   PassPhase phase_;
+  ToolPath::Posture posture_;
 };
 
 }  // namespace topomill::plugins

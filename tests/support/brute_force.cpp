@@ -1,5 +1,7 @@
 #include "support/brute_force.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 
@@ -12,6 +14,23 @@ double wrap(double a) {
 }
 
 }  // namespace
+
+topomill::Vec3 posture_axis(const topomill::ToolPath& path, std::size_t p, double t) {
+  using topomill::Vec3;
+  const auto& pass = path.pass(p);
+  const double lead = pass.posture.lead, tilt = pass.posture.tilt;
+  const Vec3 Z(0, 0, 1);
+  Vec3 n = Z, f(pass.dx, pass.dy, 0);
+  if (pass.posture.normal) {
+    const double y = path.surface_y(p, t), h = 1e-6;
+    const double slope = (path.surface().height(y + h) - path.surface().height(y - h)) / (2 * h);
+    n = Vec3(0, -slope, 1).normalized();  // z = height(y): the normal leans against the slope
+    f = pass.dy != 0 ? Vec3(0, pass.dy, pass.dy * slope).normalized() : Vec3(pass.dx, 0, 0);
+  }
+  const Vec3 c = f.cross(n);
+  return (std::cos(tilt) * (std::cos(lead) * n + std::sin(lead) * f) + std::sin(tilt) * c)
+      .normalized();
+}
 
 double brute_force_height(const topomill::ToolGeometry& tool, const topomill::ToolPath& path,
                           double x, double y) {
@@ -29,13 +48,26 @@ double brute_force_height(const topomill::ToolGeometry& tool, const topomill::To
                                               c.dt);
   }
   double best = uncut;
+  // rho: the ball point's distance from the tool's axis (in plan for a vertical tool).
   auto phase = [&](std::size_t p, int tooth, double t, double& height, double& rho) {
     const topomill::Vec3 c = path.centre(p, t);
-    const double qx = x - c.x(), qy = y - c.y();
-    rho = std::hypot(qx, qy);
-    if (rho >= R) return height = INFINITY, 0.0;
-    height = c.z() - std::sqrt(R * R - rho * rho);
-    const topomill::Vec3 e = tool.edge_point(tooth, std::asin(rho / R), path.spindle_angle(p, t));
+    double qx = x - c.x(), qy = y - c.y();
+    const double plan = std::hypot(qx, qy);
+    if (plan >= R) return rho = plan, height = INFINITY, 0.0;
+    height = c.z() - std::sqrt(R * R - plan * plan);
+    double alpha = std::asin(plan / R);
+    rho = plan;
+    if (!path.pass(p).posture.vertical()) {
+      // The ball point in the tool frame: x_t the workpiece's X projected normal to the axis,
+      // y_t = a x x_t, polar angle from the tip (-a); beyond the tool's equator no edge.
+      const topomill::Vec3 a = posture_axis(path, p, t);
+      const topomill::Vec3 xt = (topomill::Vec3(1, 0, 0) - a.x() * a).normalized();
+      const topomill::Vec3 yt = a.cross(xt), d(qx, qy, height - c.z());
+      if (d.dot(a) > 0) return height = INFINITY, 0.0;
+      qx = d.dot(xt), qy = d.dot(yt), rho = std::hypot(qx, qy);
+      alpha = std::acos(std::clamp(-d.dot(a) / R, -1.0, 1.0));
+    }
+    const topomill::Vec3 e = tool.edge_point(tooth, alpha, path.spindle_angle(p, t));
     return wrap(std::atan2(e.y(), e.x()) - std::atan2(qy, qx));
   };
   for (std::size_t p = 0; p < path.passes(); ++p) {
@@ -76,7 +108,9 @@ double brute_force_height(const topomill::ToolGeometry& tool, const topomill::To
             best = std::min(best, hr);
           }
           // The tip is a point of every edge: a node on the pass's line is cut by it.
-          if (std::abs(x - path.pass(p).x) < 1e-9 && rho1 < v * step) best = std::min(best, h1);
+          if (path.pass(p).posture.vertical() && std::abs(x - path.pass(p).x) < 1e-9 &&
+              rho1 < v * step)
+            best = std::min(best, h1);
           t0 = t1, g0 = g1, rho0 = rho1;
         }
       }

@@ -2,7 +2,11 @@
 // can be below the uncut surface sampled finely (finer near the axis, where the node's azimuth
 // turns at v / rho), the edge taken from ToolGeometry::edge_point (docs/model.md Eq. 1-7, not an
 // evaluator's own formula), every sign change of the edge-minus-node azimuth bisected. No bound,
-// no stopping rule. Used by the near-axis and the kinematics tests.
+// no stopping rule. Used by the near-axis, the kinematics and the posture tests.
+//
+// A tilted tool (ToolPath::Pass::posture) is followed with a tool frame built here from the
+// posture's definition (docs/model.md, "Tool posture"), not from ToolPath::tool_frame: the ball
+// point over the node is taken into that frame, and its polar angle there picks the edge point.
 #pragma once
 
 #include "topomill/tool_geometry.hpp"
@@ -12,4 +16,10 @@ namespace testing {
 // The lowest edge height over (x, y) on the run's (corrected) path, or the uncut surface.
 double brute_force_height(const topomill::ToolGeometry& tool, const topomill::ToolPath& path,
                           double x, double y);
+
+// The tool axis (unit, tip to spindle) on pass p at time t, from the posture's definition: fixed,
+// a = cos(tilt) (cos(lead) Z + sin(lead) F) + sin(tilt) C with F the pass's feed in plan and
+// C = F x Z; normal, the same about the surface's outward normal n at the contact point, the unit
+// feed f along the surface (from the surface's height by a central difference) and c = f x n.
+topomill::Vec3 posture_axis(const topomill::ToolPath& path, std::size_t p, double t);
 }  // namespace testing

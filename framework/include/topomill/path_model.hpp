@@ -33,9 +33,11 @@ struct PathRequest {
 // One pass as a path model lays it out: the surface point under the ball moves in a straight line
 // in plan from (x0, y0) to (x1, y1) at the feed speed, along X or along Y; `phase` is the spindle
 // angle as it starts (rad).
+// `posture` is the tool's over the pass (ToolPath::Posture; vertical by default).
 struct PassLine {
   double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
   double phase = 0.0;
+  ToolPath::Posture posture;
 };
 
 class TOPOMILL_API PathModel : public Model {

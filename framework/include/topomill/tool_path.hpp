@@ -3,6 +3,7 @@
 // the core, read by evaluators.
 #pragma once
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <memory>
 #include <vector>
@@ -19,6 +20,15 @@ class TOPOMILL_API ToolPath {
   // along X (across it, along the cylinder's axis).
   enum class FeedAxis { Y, X };
 
+  // The tool's posture over a pass (docs/model.md, "Tool posture"): lead and tilt (rad), the
+  // axis fixed in the workpiece frame (3-axis, a tilted head) or set from the surface normal at
+  // the contact point (5-axis). Lead = tilt = 0 fixed is the paper's vertical tool.
+  struct Posture {
+    double lead = 0.0, tilt = 0.0;
+    bool normal = false;
+    bool vertical() const { return !normal && lead == 0 && tilt == 0; }
+  };
+
   // One pass starts at t = 0 over the surface point (x, y_start) and ends at t_end; that point
   // moves in plan along the unit (dx, dy) at the feed speed vf: (x + vf dx t, y_start + vf dy t)
   // (the paper's feed model: uniform in Y, not along the arc). `phase` is the spindle angle at
@@ -29,6 +39,7 @@ class TOPOMILL_API ToolPath {
     double t_end = 0.0;
     double phase = 0.0;
     double dx = 0.0, dy = 1.0;
+    Posture posture;
   };
 
   // `offset` is R - ap, the distance of the ball centre from the uncut surface along its normal;
@@ -49,6 +60,19 @@ class TOPOMILL_API ToolPath {
   double surface_y(std::size_t p, double t) const;
   // Unit feed direction (tangent to the surface along the pass) at time t.
   Vec3 feed_direction(std::size_t p, double t) const;
+  // Whether the tool is vertical on every pass (the paper's): then the tool frame is the
+  // workpiece frame, and evaluators and the core skip the rotation (and keep their bits).
+  bool vertical() const { return vertical_; }
+  // The tool axis a (unit, from the tip towards the spindle) at time t.
+  Vec3 axis(std::size_t p, double t) const;
+  // The tool frame at time t: columns x_t, y_t, a, with x_t the workpiece's +X projected onto
+  // the plane normal to a (the spindle angle is measured about a from x_t towards y_t). A tool
+  // frame vector v is Q v in the workpiece frame.
+  Eigen::Matrix3d tool_frame(std::size_t p, double t) const;
+  // The polar angle, from the tool's tip, of the ball point that touches the uncut surface at
+  // time t: the angle between a and the surface normal (|lambda| for a vertical tool). The edge
+  // points that can cut lie within the CATW's half-width of it.
+  double contact_angle(std::size_t p, double t) const;
   // Ideal ball centre K (Eq. 15), moved by the runout.
   Vec3 nominal_centre(std::size_t p, double t) const;
   // Ball centre with the correction of Eq. 32-33 added (linear between correction samples).
@@ -105,6 +129,7 @@ class TOPOMILL_API ToolPath {
   std::vector<Correction> corrections_;
   Runout runout_;
   bool corrected_ = false;
+  bool vertical_ = true;
   double max_correction_ = 0.0;
 };
 
