@@ -81,15 +81,19 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
     if (scene.enabled(name))
       out.deformations.emplace_back(name, make<Deformation>(scene, catalog, name));
   out.layout = make_layout(scene, *out.tool, out.surface, *out.path);
-  if (!out.layout.path->vertical() && !out.evaluator->follows_tilted_tool()) {
-    const SlotTable &path = scene.slot("path"), &evaluator = scene.slot("evaluator");
-    const char* key = path.params.has("tilt") && path.params.number("tilt") != 0 ? "tilt" : "lead";
-    throw InputError(path.params.has(key) ? path.params.where(key) : path.where,
-                     "path." + std::string(key),
-                     "the evaluator '" + evaluator.plugin +
-                         "' follows a vertical tool only, and this path tilts it: expected "
-                         "lead = tilt = 0 with posture = \"fixed\", or evaluator.plugin = "
-                         "\"zmap\"");
+  for (std::size_t p = 0; p < out.layout.path->passes(); ++p) {
+    const ToolPath::Posture& q = out.layout.path->pass(p).posture;
+    if (out.evaluator->follows(q)) continue;
+    const SlotTable& path = scene.slot("path");
+    const std::string key = q.normal ? "posture" : q.tilt != 0 ? "tilt" : "lead";
+    throw InputError(path.params.has(key) ? path.params.where(key) : path.where, "path." + key,
+                     "the evaluator '" + scene.slot("evaluator").plugin +
+                         "' does not follow the tool's posture " +
+                         (q.normal ? "along the surface normal" : "fixed") + " with lead " +
+                         format_number(q.lead * 180 / M_PI) + " deg and tilt " +
+                         format_number(q.tilt * 180 / M_PI) +
+                         " deg: expected a posture it follows (its README says which), or "
+                         "evaluator.plugin = \"zmap\", which follows any");
   }
   const EvaluationCost cost = evaluation_cost(out, threads);
   check_memory(scene, out, cost, threads, available_memory());

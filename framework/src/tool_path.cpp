@@ -28,6 +28,9 @@ ToolPath::ToolPath(std::shared_ptr<const SurfaceShape> surface, double offset, d
   }
   if (along_x && along_y) throw std::invalid_argument("passes feed along both X and Y");
   if (along_x) axis_ = FeedAxis::X;
+  for (std::size_t p = 0; p < passes_.size(); ++p)
+    fixed_frame_.push_back(passes_[p].posture.normal ? Eigen::Matrix3d::Identity()
+                                                     : frame_of(axis_of(p, 0.0)));
 }
 
 // The direction's components are 0 or +-1 (checked above), so that vf (d t) is vf t, -vf t or 0
@@ -61,6 +64,10 @@ Vec3 ToolPath::runout_offset(std::size_t p, double t) const {
 }
 
 Vec3 ToolPath::axis(std::size_t p, double t) const {
+  return passes_[p].posture.normal ? axis_of(p, t) : Vec3(fixed_frame_[p].col(2));
+}
+
+Vec3 ToolPath::axis_of(std::size_t p, double t) const {
   const Pass& pass = passes_[p];
   const Posture& q = pass.posture;
   if (q.vertical()) return Vec3::UnitZ();
@@ -79,8 +86,10 @@ Vec3 ToolPath::axis(std::size_t p, double t) const {
 }
 
 Eigen::Matrix3d ToolPath::tool_frame(std::size_t p, double t) const {
-  if (passes_[p].posture.vertical()) return Eigen::Matrix3d::Identity();
-  const Vec3 a = axis(p, t);
+  return passes_[p].posture.normal ? frame_of(axis_of(p, t)) : fixed_frame_[p];
+}
+
+Eigen::Matrix3d ToolPath::frame_of(const Vec3& a) {
   const Vec3 x = (Vec3::UnitX() - a.x() * a).normalized();  // a is kept off X (layout)
   Eigen::Matrix3d q;
   q.col(0) = x, q.col(1) = a.cross(x), q.col(2) = a;

@@ -28,7 +28,8 @@ double node_height_reference(const PassageSetup& s, double x, double y, NodeCoun
     const double slack = s.wiggles ? 1e-9 : 0.0;   // as the row walk's
     if (geo.bound(t_b) - slack >= best) continue;  // this pass cannot lower the node
     best = std::min(best, geo.walk(t_b, roots, counts.passages, best));
-    if (entry.first < PassageGeometry::kOnAxis) best = std::min(best, geo.tip_height(t0));
+    if (std::abs((s.along_y ? x : y) - s.tip_line(p)) < PassageGeometry::kOnAxis)
+      best = std::min(best, geo.tip_height(s.tilted[p] ? s.tip_time(p, x, y) : t0));
   }
   return best;
 }

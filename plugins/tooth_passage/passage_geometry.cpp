@@ -39,6 +39,12 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
   const double pad = 2 * rev;
   for (std::size_t p = 0; p < path->passes(); ++p) {
     centre.emplace_back(*path, p, -pad, path->pass(p).t_end + pad, kTableTolerance);
+    // A fixed posture keeps the frame over the pass (the only tilt followed: tooth_passage.cpp).
+    const bool tilt = !path->pass(p).posture.vertical();
+    tilted.push_back(tilt ? 1 : 0);
+    to_tool.push_back(path->tool_frame(p, 0.0).transpose());
+    const Vec3 axis = path->axis(p, 0.0);
+    tip_offset.emplace_back(tilt ? -R * axis.x() : 0.0, tilt ? -R * axis.y() : 0.0);
     const Vec3 c0 = path->nominal_centre(p, 0.0);
     line.push_back(along_y ? c0.x() : c0.y());
     // The correction is linear between its samples and held beyond: its range is theirs.
@@ -49,6 +55,7 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     nominal_speed.push_back(centre.back().top_speed());
     const double v = top_speed(p, -INFINITY, INFINITY).first, half = 0.5 * rev;
     const double k1 = lag_shape.over(0.0, 0.95 * R).k1;
+    gap_lag = std::sqrt(1 + k1 * k1);
     gap_rho.emplace_back(1.01 * (v * half + std::sqrt(1 + k1 * k1) * v / std::abs(omega)),
                          0.95 * R - v * half);
     // The line from the pass's nominal start to its end in plan; the correction's plan offset at
@@ -91,7 +98,8 @@ double PassageSetup::level_time(std::size_t p, double x, double y) const {
 }
 
 std::pair<double, double> PassageSetup::contact_radii(std::size_t p, double t) const {
-  const double lambda = std::abs(path->surface().inclination(path->surface_y(p, t)));
+  // The contact's polar angle about the axis: |lambda| for a vertical tool.
+  const double lambda = path->contact_angle(p, t);
   const double lo = std::max(0.0, lambda - margin * kappa);
   const double hi = std::min(M_PI / 2, lambda + margin * kappa);
   return {R * std::sin(lo), R * std::sin(hi)};
@@ -121,6 +129,7 @@ double PassageGeometry::crossing(int tooth, double t, double& slope, Probe& last
 }
 
 PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) const {
+  if (tilted_) return span_tilted(sa, sb);
   const double a = sa.t, b = sb.t;
   const double step = s_.path->correction_step(pass_);
   const double A = table_.accel_xy(), h = b - a;
@@ -160,6 +169,14 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) 
     v = s_.top_speed(pass_, a, b).first;
     c_hi = rho_hi * v, c_lo = -c_hi;
   }
+  Span out = bound_rates(rho_lo, rho_hi, v, c_lo, c_hi, A, knot_inside);
+  out.plan_lo = rho_lo;
+  return out;
+}
+
+PassageGeometry::Span PassageGeometry::bound_rates(double rho_lo, double rho_hi, double v,
+                                                   double c_lo, double c_hi, double A,
+                                                   bool knot_inside) const {
   LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);
   double jump = 0;
   if (!std::isfinite(k.k1)) {  // the rim: the lag's turn, not its rate (lag_shape.hpp)
@@ -203,6 +220,91 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) 
   return {rho_lo, rho_hi, finite(fall), finite(rise), finite(curve), jump};
 }
 
+bool PassageGeometry::lifted(const Vec3& c, const Vec3& v, Vec3& p, Vec3& dp) const {
+  const double qx = x_ - c.x(), qy = y_ - c.y(), r2 = qx * qx + qy * qy;
+  if (!(r2 < s_.R2)) return false;
+  // P = (q, -h), h = sqrt(R^2 - |q|^2); q' = -v, so P' = (-v, -(q . v) / h).
+  const double h = std::sqrt(s_.R2 - r2);
+  p = to_tool_ * Vec3(qx, qy, -h);
+  dp = to_tool_ * Vec3(-v.x(), -v.y(), -(qx * v.x() + qy * v.y()) / h);
+  return true;
+}
+
+// A tilted tool: the moving point is the ball point over the node in the tool frame, the lift
+// P(q) = (q, -sqrt(R^2 - |q|^2)) of the plan offset q = node - centre, turned. Where the plan
+// offset stays within rho_w <= R sin(alpha_w) of the centre, the lift stretches plan lengths by
+// at most L = R / h (h = sqrt(R^2 - rho_w^2)), so its speed is at most L |q'|, and its
+// acceleration |P''| at most |q''| + (|q'|^2 + rho_w |q''|) / h + rho_w^2 |q'|^2 / h^3 (the
+// second derivative of -h). With a correction knot inside, the plan region (the nominal chord
+// moved by the correction's box, as for a vertical tool) lifts into the chord between its ends'
+// lifts thickened by the lift's bend over it (R^2 len^2 / 8 h^3 for a straight plan segment of
+// length len) and L times the region's own thickness. The turn by the frame is a rotation.
+PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sample& sb) const {
+  const double a = sa.t, b = sb.t, h_t = b - a;
+  const double step = s_.path->correction_step(pass_);
+  const double A = table_.accel_xy();
+  const double first_knot = step > 0 ? std::max(0.0, std::floor(a / step) + 1) * step : INFINITY;
+  const bool knot_inside = step > 0 && first_knot < b && first_knot <= last_knot();
+  // The plan region first: its chord, thickness, the plan offset's range and top speed.
+  Vec3 ca, cb;
+  double grow, v_plan;
+  if (!knot_inside) {
+    ca = sa.c, cb = sb.c, grow = A * h_t * h_t / 8 + 1e-12;
+    const Vec3 va = sa.v + sa.dv, vb = sb.v + sa.dv;
+    v_plan = std::max(norm(va.x(), va.y()), norm(vb.x(), vb.y())) + A * h_t / 2;
+  } else {
+    const auto [lo, hi] = table_.correction_box(a, b);
+    const Vec3 mid = 0.5 * (lo + hi);
+    ca = table_.nominal(a) + mid, cb = table_.nominal(b) + mid;
+    grow = A * h_t * h_t / 8 + 0.5 * norm(hi.x() - lo.x(), hi.y() - lo.y()) + 1e-12;
+    v_plan = s_.top_speed(pass_, a, b).first;
+  }
+  const double u = nearest_on_chord(ca, cb);
+  const double ax = x_ - ca.x(), ay = y_ - ca.y(), bx = x_ - cb.x(), by = y_ - cb.y();
+  const double plan_lo =
+      std::max(0.0, norm(ax - u * (cb.x() - ca.x()), ay - u * (cb.y() - ca.y())) - grow);
+  const double plan_hi = std::max(norm(ax, ay), norm(bx, by)) + grow;
+  Span none{0, s_.R, INFINITY, INFINITY, INFINITY, 0};
+  none.plan_lo = plan_lo;
+  if (plan_lo >= s_.R) return none.rho_lo = s_.R, none;  // off the ball all along
+  // Next to the ball's rim in plan the lift has no bound (the ball point moves vertically).
+  const double h = plan_hi < s_.R ? std::sqrt(s_.R2 - plan_hi * plan_hi) : 0.0;
+  if (h < 1e-6 * s_.R) return none;
+  const double L = s_.R / h;
+  Vec3 pa, pb, da, db;
+  if (!lifted(ca, knot_inside ? Vec3::Zero() : Vec3(sa.v + sa.dv), pa, da) ||
+      !lifted(cb, knot_inside ? Vec3::Zero() : Vec3(sb.v + sa.dv), pb, db))
+    return none;
+  // The tool-frame point's chord and the region about it.
+  const double ux = pb.x() - pa.x(), uy = pb.y() - pa.y(), len2 = ux * ux + uy * uy;
+  const double w = len2 > 0 ? std::clamp(-(pa.x() * ux + pa.y() * uy) / len2, 0.0, 1.0) : 0.0;
+  const double chord_lo = norm(pa.x() + w * ux, pa.y() + w * uy);
+  const double ends_hi = std::max(norm(pa.x(), pa.y()), norm(pb.x(), pb.y()));
+  double thick, v, c_lo, c_hi, accel;
+  if (!knot_inside) {
+    // P'' bound over the piece (q'' = -c'', the centre's plan acceleration at most A).
+    accel =
+        A + (v_plan * v_plan + plan_hi * A) / h + plan_hi * plan_hi * v_plan * v_plan / (h * h * h);
+    thick = accel * h_t * h_t / 8 + 1e-12;
+    // v = -P' in the tool frame (the vertical code's convention: the centre's velocity).
+    v = std::max(norm(da.x(), da.y()), norm(db.x(), db.y())) + accel * h_t / 2;
+    const double m_a = -(pa.x() * da.y() - pa.y() * da.x()),
+                 m_b = -(pb.x() * db.y() - pb.y() * db.x());
+    const double slack = (ends_hi + thick) * accel * h_t / 2;
+    c_lo = std::min(m_a, m_b) - slack, c_hi = std::max(m_a, m_b) + slack;
+  } else {
+    const double len = norm(cb.x() - ca.x(), cb.y() - ca.y());
+    thick = s_.R2 * len * len / (8 * h * h * h) + L * grow + 1e-12;
+    v = L * v_plan;
+    c_hi = (ends_hi + thick) * v, c_lo = -c_hi;
+    accel = INFINITY;
+  }
+  const double rho_lo = std::max(0.0, chord_lo - thick), rho_hi = ends_hi + thick;
+  Span out = bound_rates(rho_lo, rho_hi, v, c_lo, c_hi, accel, knot_inside);
+  out.plan_lo = plan_lo;
+  return out;
+}
+
 bool PassageGeometry::turns_by(double lo, double hi, double turn) const {
   const double w = std::abs(s_.omega), h = (hi - lo) / 4;
   Sample at[5];
@@ -228,7 +330,23 @@ bool PassageGeometry::turns_by(double lo, double hi, double turn) const {
 
 double PassageGeometry::next_gap(double t, double rho, double dir) const {
   const double half = 0.5 * s_.rev, w = std::abs(s_.omega);
-  if (const auto [lo, hi] = s_.gap_rho[pass_]; rho <= hi) {
+  if (tilted_) {
+    // The same in the tool frame, where the ball point moves at most L = R / h times as fast as
+    // the plan offset (span_tilted), h from the farthest the node gets from the centre in plan
+    // over the half revolution.
+    // The lag's slope first over the whole ball (gap_lag: one number), then only as far out as
+    // the point gets.
+    const Vec3 c = table_(t);
+    const double v = s_.plan_line[pass_].speed, plan_hi = norm(x_ - c.x(), y_ - c.y()) + v * half;
+    if (plan_hi < 0.95 * s_.R) {
+      const double L = s_.R / std::sqrt(s_.R2 - plan_hi * plan_hi), moved = L * v * half;
+      if (rho + moved <= 0.95 * s_.R) {
+        if (rho - 1.01 * moved >= 1.01 * s_.gap_lag * L * v / w) return half;
+        const double k1 = s_.lag_shape.over(0.0, rho + moved).k1;
+        if (rho - 1.01 * moved >= 1.01 * std::sqrt(1 + k1 * k1) * L * v / w) return half;
+      }
+    }
+  } else if (const auto [lo, hi] = s_.gap_rho[pass_]; rho <= hi) {
     if (rho >= lo) return half;
     // Closer in, the same with the lag's slope taken only as far out as the node can get in half
     // a revolution (gap_rho takes it to 0.95 R, where a loxodrome's is twice its tip's), and the
@@ -243,6 +361,18 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
 }
 
 double PassageGeometry::rate(const Sample& at, const Vec3& dv) const {
+  if (tilted_) {
+    // The same in the tool frame: q the ball point's offset from the axis, q' its velocity.
+    Vec3 p, dp;
+    if (!lifted(at.c, at.v + dv, p, dp)) return NAN;
+    const double r2 = p.x() * p.x() + p.y() * p.y();
+    if (!(r2 > 0)) return NAN;
+    const double du = (p.x() * dp.x() + p.y() * dp.y()) / r2,
+                 daz = (p.x() * dp.y() - p.y() * dp.x()) / r2;
+    const double sin_a = std::sqrt(r2) / s_.R;
+    if (sin_a >= 1) return NAN;
+    return s_.omega + s_.lag_shape.slope(sin_a, std::abs(p.z()) / s_.R, *s_.tool) * du - daz;
+  }
   const Vec3 &c = at.c, v = at.v + dv;
   const double qx = x_ - c.x(), qy = y_ - c.y(), r2 = qx * qx + qy * qy;
   if (!(r2 > 0)) return NAN;
@@ -293,8 +423,8 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   };
   // The ball's lowest possible height over the node on a piece.
   auto floor_of = [&](const Piece& p, const Span& sp) {
-    if (sp.rho_lo >= s_.R) return double(INFINITY);
-    return table_.lowest_z(p.lo.at.t, p.hi.at.t) - std::sqrt(s_.R2 - sp.rho_lo * sp.rho_lo);
+    if (sp.plan_lo >= s_.R) return double(INFINITY);
+    return table_.lowest_z(p.lo.at.t, p.hi.at.t) - std::sqrt(s_.R2 - sp.plan_lo * sp.plan_lo);
   };
   auto found = [&](int tooth, double t) {
     const Probe q = probe(tooth, t);

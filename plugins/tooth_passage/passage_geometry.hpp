@@ -6,6 +6,12 @@
 // above it has sin(alpha) = |d| / R and height centre_z - sqrt(R^2 - |d|^2). Tooth j's edge is
 // over the node when its azimuth theta_j + Psi(alpha) + spindle(t) equals the node's azimuth
 // atan2(d): a root of g_j(t) = 0 mod 2 pi, g growing at about the spindle rate.
+//
+// A tilted tool (a fixed posture: docs/model.md, "Tool posture") changes only where that ball
+// point lies on the tool: it is the same point of the same sphere, taken into the tool's frame,
+// where its distance from the axis and its azimuth about it replace |d| and atan2(d) above. The
+// bounds on the phase's rate (span) are the same functions of that point's path in the tool frame
+// (its chord, speed and acceleration), which follow from the centre's through the sphere.
 #pragma once
 
 #include <atomic>
@@ -49,6 +55,11 @@ struct PassageSetup {
   LagShape lag_shape;               // bounds of the lag's turn, for the phase bounds
   std::vector<CentreTable> centre;  // per pass
   std::vector<double> line;         // per pass: its nominal x (feeding along Y) or y
+  // Per pass, whether the tool is tilted on it, and then its frame's transpose (rows x_t, y_t, a:
+  // fixed over the pass), and where its tip is in plan from the centre (-R a's x and y).
+  std::vector<char> tilted;
+  std::vector<Eigen::Matrix3d> to_tool;
+  std::vector<std::pair<double, double>> tip_offset;
   // Whether the centre moves about a smooth path, by the correction (at the tooth period) or the
   // runout (a circle of radius `runout` at the spindle's rate): then the envelope wiggles and has
   // dips anywhere, and the walks bound passages by its floor instead (floor_envelope).
@@ -66,6 +77,7 @@ struct PassageSetup {
   // anywhere, so G' stays within (0, 2 omega) while the centre, at its top speed v, stays
   // farther than sqrt(1 + Psi_u^2) v / omega and within 0.95 R (the lag's slope bounded).
   std::vector<std::pair<double, double>> gap_rho;
+  double gap_lag = 1;  // sqrt(1 + Psi_u^2) with the lag's slope over the ball to 0.95 R
   // Per pass, a line in plan that the centre, corrected or not, never strays from by more than
   // `off` (through (x, y) along the unit (ux, uy); off infinite when the pass does not move in
   // plan), and the centre's top speed in plan. A node farther from the line than off + v / omega
@@ -81,6 +93,15 @@ struct PassageSetup {
 
   // The pass's time when its centre is level with (x, y) along the feed (secant steps).
   double level_time(std::size_t p, double x, double y) const;
+  // When its tip is: the centre level with (x, y) less the tip's offset (the level time for a
+  // vertical tool).
+  double tip_time(std::size_t p, double x, double y) const {
+    return level_time(p, x - tip_offset[p].first, y - tip_offset[p].second);
+  }
+  // The line in plan the tip follows (across the feed): the pass's own for a vertical tool.
+  double tip_line(std::size_t p) const {
+    return line[p] + (along_y ? tip_offset[p].first : tip_offset[p].second);
+  }
   // The contact range [lo, hi] of polar angles at that time, as R sin(lo), R sin(hi).
   std::pair<double, double> contact_radii(std::size_t p, double t) const;
 };
@@ -121,7 +142,9 @@ class PassageGeometry {
         y_(y),
         rho_lo_(rho_lo),
         rho_hi_(rho_hi),
-        phase_(s.path->pass(pass).phase) {
+        phase_(s.path->pass(pass).phase),
+        tilted_(s.tilted[pass] != 0),
+        to_tool_(s.to_tool[pass]) {
     const PassageSetup::PlanLine& l = s.plan_line[pass];
     line_gap_ = std::abs(l.ux * (y - l.y) - l.uy * (x - l.x)) - l.off;
   }
@@ -146,11 +169,26 @@ class PassageGeometry {
   Probe probe(int tooth, double t, const Vec3& c) const {
     const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
     if (r2 >= s_.R2) return {false, 0, INFINITY, std::sqrt(r2), NAN};
-    const double rho = std::sqrt(r2), below = std::sqrt(s_.R2 - r2);
+    const double below = std::sqrt(s_.R2 - r2);
+    if (tilted_) return probe_tilted(tooth, t, c, dx, dy, below);
+    const double rho = std::sqrt(r2);
     const double sin_a = rho / s_.R;
     const double lag = sin_a < s_.sin_tip ? s_.lag_tip : s_.tool->lag_sc(sin_a, below / s_.R);
     return {rho >= rho_lo_ && rho <= rho_hi_,
             wrap(s_.tooth_angle[tooth] + lag + phase_ + s_.omega * t - std::atan2(dy, dx)),
+            c.z() - below, rho, lag};
+  }
+  // A tilted tool: the ball point over the node, (dx, dy, -below) from the centre, in the tool
+  // frame. Its polar angle from the tip is taken as asin(rho / R), the lag's argument: past the
+  // tool's equator that folds back, which keeps g continuous (the bounds hold for it), and no
+  // edge is there (not over).
+  Probe probe_tilted(int tooth, double t, const Vec3& c, double dx, double dy, double below) const {
+    const Vec3 p = to_tool_ * Vec3(dx, dy, -below);
+    const double rho = std::sqrt(p.x() * p.x() + p.y() * p.y()), sin_a = rho / s_.R;
+    const double lag =
+        sin_a < s_.sin_tip ? s_.lag_tip : s_.tool->lag_sc(sin_a, std::abs(p.z()) / s_.R);
+    return {p.z() <= 0 && rho >= rho_lo_ && rho <= rho_hi_,
+            wrap(s_.tooth_angle[tooth] + lag + phase_ + s_.omega * t - std::atan2(p.y(), p.x())),
             c.z() - below, rho, lag};
   }
 
@@ -189,10 +227,20 @@ class PassageGeometry {
     return r2 < s_.R2 ? z - std::sqrt(s_.R2 - r2) : z + (std::sqrt(r2) - s_.R);
   }
 
-  // The node's distance from the axis at t.
+  // The node's distance from the centre in plan at t.
   double distance(double t) const {
     const Vec3 c = table_(t);
     return std::hypot(x_ - c.x(), y_ - c.y());
+  }
+  // The ball point over the node's distance from the tool's axis at t (Probe::rho): the same as
+  // distance() for a vertical tool; +inf off the ball.
+  double axis_distance(double t) const {
+    if (!tilted_) return distance(t);
+    const Vec3 c = table_(t);
+    const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
+    if (!(r2 < s_.R2)) return INFINITY;
+    const Vec3 p = to_tool_ * Vec3(dx, dy, -std::sqrt(s_.R2 - r2));
+    return std::sqrt(p.x() * p.x() + p.y() * p.y());
   }
 
   // The ball's height over the node, continued past its rim so that it stays unimodal.
@@ -257,6 +305,9 @@ class PassageGeometry {
     // Next to the rim the lag's rate has no bound: fall and rise then leave the lag out, and
     // `jump` bounds how far it turns the phase over the piece (LagShape::variation); else 0.
     double jump = 0;
+    // The node's least distance from the centre in plan, for the ball's height (rho_lo but for
+    // a tilted tool, whose rho is the ball point's distance from its own axis).
+    double plan_lo = 0;
     bool monotone(double w) const { return fall < w && jump == 0; }
     double top(double w) const { return std::max(w + rise, fall - w); }  // |G'| <= top
     // |G(b) - G(a)| over a piece of length h = b - a.
@@ -266,6 +317,16 @@ class PassageGeometry {
   // correction knot lies inside, else from the nominal chord moved by the correction's box there.
   Span span(double a, double b) const { return span(sample(a), sample(b)); }
   Span span(const Sample& a, const Sample& b) const;
+  // The bounds from the moving point's path over a piece: its distance from the axis within
+  // [rho_lo, rho_hi], its speed at most v, its moment about the axis (q x v, v = -q') within
+  // [c_lo, c_hi], its acceleration at most `accel` (infinite curvature bound with a knot inside).
+  Span bound_rates(double rho_lo, double rho_hi, double v, double c_lo, double c_hi, double accel,
+                   bool knot_inside) const;
+  // A tilted tool's: the ball point over the node in the tool frame, lifted from the plan.
+  Span span_tilted(const Sample& a, const Sample& b) const;
+  // The ball point over the node relative to the centre in the tool frame, and its velocity, for
+  // the centre at c moving at v (plan offset q = node - c): false off the ball.
+  bool lifted(const Vec3& c, const Vec3& v, Vec3& p, Vec3& dp) const;
   // G'(t), the phase's rate (rad/s): the same for every tooth. `dv` is the correction's slope on
   // the side of t asked for (sample's is the right: a piece ending at a knot asks for the left).
   double rate(const Sample& at, const Vec3& dv) const;
@@ -315,7 +376,7 @@ class PassageGeometry {
   // over the node: a node on the pass's line, which the axis passes within kOnAxis of at t0
   // (the level time), is cut by the tip then. +inf otherwise.
   static constexpr double kOnAxis = 1e-9;  // mm
-  double tip_height(double t0) const {
+  double tip_height(double t0) const {     // t0: PassageSetup::tip_time
     const Probe q = probe(0, t0);
     return q.over && q.rho < kOnAxis ? q.height : INFINITY;
   }
@@ -351,6 +412,8 @@ class PassageGeometry {
   const CentreTable& table_;
   std::size_t pass_;
   double x_, y_, rho_lo_, rho_hi_, phase_;
+  bool tilted_;
+  Eigen::Matrix3d to_tool_;  // the tool frame's transpose when tilted
   double line_gap_;  // at most the axis's least distance from the node along the pass (PlanLine)
 };
 

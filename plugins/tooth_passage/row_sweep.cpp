@@ -156,8 +156,9 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
 template <class T0>
 double RowSweep::with_tip(const PassageGeometry& geo, double h, T0 t0) const {
   const double key = s_.along_y ? geo.x() : geo.y();
-  if (std::abs(key - s_.line[geo.pass()]) < PassageGeometry::kOnAxis)
-    h = std::min(h, geo.tip_height(t0()));
+  const std::size_t p = geo.pass();
+  if (std::abs(key - s_.tip_line(p)) < PassageGeometry::kOnAxis)
+    h = std::min(h, geo.tip_height(s_.tilted[p] ? s_.tip_time(p, geo.x(), geo.y()) : t0()));
   return h;
 }
 
@@ -378,7 +379,9 @@ bool RowSweep::solve_root(const PassageGeometry& geo, int tooth, const Root* fro
   if (!PassageGeometry::converged(q)) return false;
   r = Root{t, from && x != from->x ? (t - from->t) / (x - from->x) : 0.0, slope};
   if (t >= 0 && t <= geo.t_end() && std::isfinite(q.height))
-    r.x = x, r.height = q.height, r.fall = fall_rate(geo.pass(), t, q.rho, r.reach);
+    r.x = x, r.height = q.height,
+    r.fall =
+        fall_rate(geo.pass(), t, q.rho, s_.tilted[geo.pass()] ? geo.distance(t) : q.rho, r.reach);
   return true;
 }
 
@@ -429,24 +432,33 @@ double RowSweep::floor_steepness(std::size_t p, double below) const {
 // and rho over what the node and the axis can move in it, so the bound holds while the root stays
 // in the window (reach = window / bx) and the node within kReach. Where the correction jerks the
 // axis sideways faster than the edge sweeps (|g_t| could vanish), there is no bound.
-double RowSweep::fall_rate(std::size_t p, double t, double rho, double& reach) const {
+// A tilted tool: alpha and the height's slope are the plan's (the ball is the same sphere), while
+// rho, k and the azimuth are the ball point's in the tool frame, which moves at most L = R / h
+// (h = sqrt(R^2 - rho_plan^2)) times as far as the plan offset does (the lift, span_tilted): so
+// |g_x| <= L (1/rho + k) and |g_t| >= |omega| - L vxy sqrt(1/rho^2 + k^2). L = 1 when vertical.
+double RowSweep::fall_rate(std::size_t p, double t, double rho, double plan, double& reach) const {
   constexpr double kReach = 0.05;  // mm along the row
   // The window either side of t: eight correction steps, or with none (a runout alone) a
   // quarter revolution, within which the next node's root stays.
   const double step = s_.path->correction_step(p), w = step > 0 ? 8 * step : 0.25 * s_.rev;
   const auto [vxy, vz] = s_.top_speed(p, t - w, t + w);
-  const double rho_lo = rho - vxy * w - kReach, rho_hi = rho + vxy * w + kReach;
+  const double moved = vxy * w + kReach;  // how far the plan offset can go in the window
+  const double plan_hi = plan + moved;
+  if (plan_hi >= 0.95 * s_.R) return INFINITY;
+  const double sp_hi = plan_hi / s_.R, cp_hi = std::sqrt(1 - sp_hi * sp_hi);
+  const double L = s_.tilted[p] ? 1 / cp_hi : 1.0;
+  const double rho_lo = rho - L * moved, rho_hi = rho + L * moved;
   if (rho_lo <= 0 || rho_hi >= 0.95 * s_.R) return INFINITY;
   const double s_lo = rho_lo / s_.R, s_hi = rho_hi / s_.R;
   const double c_lo = std::sqrt(1 - s_lo * s_lo), c_hi = std::sqrt(1 - s_hi * s_hi);
   const double lag_slope = std::max(std::abs(s_.tool->lag_slope_sc(s_lo, c_lo)),
                                     std::abs(s_.tool->lag_slope_sc(s_hi, c_hi)));
   const double k = lag_slope / (s_.R * c_hi);
-  const double sweep = std::abs(s_.omega) - vxy * std::sqrt(1 / (rho_lo * rho_lo) + k * k);
+  const double sweep = std::abs(s_.omega) - L * vxy * std::sqrt(1 / (rho_lo * rho_lo) + k * k);
   if (sweep <= 0.2 * std::abs(s_.omega)) return INFINITY;
-  const double bx = (1 / rho_lo + k) / sweep;
+  const double bx = L * (1 / rho_lo + k) / sweep;
   reach = std::min(kReach, w / bx);
-  const double tan_hi = s_hi / c_hi;
+  const double tan_hi = sp_hi / cp_hi;
   return tan_hi + (vz + tan_hi * vxy) * bx;
 }
 
@@ -515,7 +527,7 @@ double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, doubl
         if (guess < -rev / 2 || guess > t_end + rev / 2) break;
         // Every later passage lies beyond the next one's least gap (at most half a revolution).
         if (dir * (t_prev + dir * 0.5 * rev - st.stop[side]) >= 0 &&
-            dir * (t_prev + dir * geo.next_gap(t_prev, geo.distance(t_prev), dir) -
+            dir * (t_prev + dir * geo.next_gap(t_prev, geo.axis_distance(t_prev), dir) -
                    st.stop[side]) >=
                 0)
           break;

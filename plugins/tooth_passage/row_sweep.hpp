@@ -75,8 +75,9 @@ class RowSweep {
   // How fast pass p's floor, where below `below`, can change along the row (mm/mm).
   double floor_steepness(std::size_t p, double below) const;
   // How fast a corrected passage's height can fall along the row from its root t (at distance
-  // rho from the axis), and for how far (`reach`) that holds; infinite when no bound holds.
-  double fall_rate(std::size_t pass, double t, double rho, double& reach) const;
+  // rho from the axis, `plan` from the centre in plan: the same for a vertical tool), and for how
+  // far (`reach`) that holds; infinite when no bound holds.
+  double fall_rate(std::size_t pass, double t, double rho, double plan, double& reach) const;
 
   const PassageSetup& s_;
   std::vector<std::size_t> by_line_;  // passes sorted by their line

@@ -50,7 +50,7 @@ class ZMap : public TopographyEvaluator {
   // Memory: one map per thread. Time: every edge point of every tooth at every step, 30 ns
   // each (measured: 368e6 points in 11.2 s on the paper's lambda = 30 deg scene, one thread),
   // the edge points per tooth from Eq. 44 over the widened contact range at the steepest lambda.
-  bool follows_tilted_tool() const override { return true; }
+  bool follows(const ToolPath::Posture&) const override { return true; }  // any: it turns points
 
   EvaluationCost estimate_cost(const EvaluationRequest& rq, const Grid& g) const override {
     EvaluationCost c;

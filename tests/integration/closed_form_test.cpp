@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <sstream>
 
 #include "support/scenes.hpp"
 
@@ -53,6 +54,27 @@ TEST_CASE("flat cross-feed scallops have height R - sqrt(R^2 - (ae/2)^2)",
                     {"cutting.stepover=" + std::to_string(ae)});
       CHECK(cusp_height_um(r.residual, false) == Approx(flat_scallop_um(5, ae)).epsilon(0.015));
     }
+  }
+}
+
+TEST_CASE("the cross-feed scallop does not change with the tool's lead or tilt",
+          "[closed-form][scallop][posture]") {
+  // While only the ball cuts, the ball is the same sphere R - ap from the surface whatever the
+  // axis: the cusp between passes is R - sqrt(R^2 - (ae/2)^2) on a plate and on the paper's 30
+  // deg face (where it lies along the face). Exact heights (tooth_passage follows a fixed posture).
+  struct Case {
+    double lambda, lead, tilt;
+  };
+  const Case c = GENERATE(Case{0, 15, 10}, Case{0, -20, 0}, Case{0, 0, -25}, Case{30, 15, 10},
+                          Case{30, -10, 20});
+  DYNAMIC_SECTION("lambda " << c.lambda << ", lead " << c.lead << ", tilt " << c.tilt) {
+    std::ostringstream plane;
+    plane << "plugin = 'inclined_plane'\nangle = " << c.lambda;
+    const auto r =
+        run_scene(paper_scene(plane.str(), c.lambda, 0.3, 0.2, 0.005),
+                  {"evaluator.plugin=tooth_passage", "path.lead=" + std::to_string(c.lead),
+                   "path.tilt=" + std::to_string(c.tilt)});
+    CHECK(cusp_height_um(r.residual, false) == Approx(flat_scallop_um(5, 0.3)).epsilon(2e-3));  // 0.01 % seen
   }
 }
 

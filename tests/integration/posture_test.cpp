@@ -1,8 +1,9 @@
 // The tool's posture ([path] lead, tilt, posture): the axis and frame follow their definition,
 // zero lead and tilt are the vertical tool to the bit, a tilted tool's cut is where an
 // independent brute force puts it (tests/support/brute_force.cpp builds its own frame), a tilt one
-// way cutting cw is the mirror image of the tilt the other way cutting ccw, and a tool along the
-// normal of an inclined plane cuts what a vertical tool cuts on a flat plate.
+// way cutting cw is the mirror image of the tilt the other way cutting ccw, a tool leaned back by
+// lambda on a plate deflects as a vertical tool on a plane at lambda, and tooth_passage equals
+// the brute force under a tilted tool at every node.
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -233,4 +234,83 @@ TEST_CASE(
   REQUIRE(largest > 1e-4);
   CHECK(worst < 1e-9 * largest * 1e3);
   CHECK(unturned > 0.02 * largest);  // mostly along X, which the turn keeps
+}
+
+TEST_CASE("tooth_passage equals a brute force under a tilted tool", "[posture][fast]") {
+  // Both walks against the brute force (which builds its own frame) at every node, to 0.1 nm as
+  // near the vertical tool's axis (near_axis_test.cpp). Tilts that keep the tip out of the cut,
+  // and small ones on a plate where the tip cuts and the tool's axis passes over the nodes (the
+  // phase turns back there, in the tool's frame now), with the feed along X, zigzag, one tooth,
+  // runout, vibration and deflection.
+  struct Case {
+    const char* name;
+    std::string workpiece;
+    double lambda;
+    std::vector<std::string> set;
+    std::string extra;
+  };
+  const Case c = GENERATE_COPY(
+      Case{"arc at 30 deg, lead 15, tilt 10", kArc, 30, {"path.lead=15", "path.tilt=10"}, ""},
+      // The tip within about 10 um of the ball's bottom: it cuts, and the axis passes over
+      // nodes (exact windows in the tool frame; with tilts of a few degrees the tip is microns
+      // above the cut and never decides a node).
+      Case{"plate, lead 0.5, tilt 0.3, ccw: the axis over the nodes",
+           kPlate,
+           0,
+           {"path.lead=0.5", "path.tilt=0.3", "cutting.spindle_direction=ccw"},
+           ""},
+      Case{"plate, lead 1, 1 tooth, zigzag: the axis over the nodes",
+           kPlate,
+           0,
+           {"path.lead=1", "tool.teeth=1", "path.plugin=zigzag", "path.even_passes=reverse"},
+           ""},
+      Case{"plate, lead 0.4, tilt -0.2, runout 1 um, vibration and deflection: the axis over "
+           "the nodes",
+           kPlate,
+           0,
+           {"path.lead=0.4", "path.tilt=-0.2", "runout.offset=0.001", "tool.radius=5",
+            "cutting.depth_of_cut=0.05", "cutting.stepover=0.2"},
+           testing::dynamics_tables()},
+      Case{"arc at 30 deg, raster_across, lead -10, tilt 5",
+           kArc,
+           30,
+           {"path.plugin=raster_across", "path.lead=-10", "path.tilt=5"},
+           ""},
+      Case{"arc at 10 deg, lead 8, tilt -6, runout 2 um, vibration and deflection",
+           kArc,
+           10,
+           {"path.lead=8", "path.tilt=-6", "runout.offset=0.002", "tool.radius=5",
+            "cutting.depth_of_cut=0.05", "cutting.stepover=0.2"},
+           testing::dynamics_tables()});
+  INFO(c.name);
+  const std::string scene = small(c.workpiece, c.lambda, 30, "cw", 0.0025, 0.025) + c.extra;
+  const auto m = prepared(scene, c.set);
+  std::vector<double> expected;
+  for (const std::string walk : {"row", "node"}) {
+    auto set = c.set;
+    set.push_back("evaluator.plugin=tooth_passage");
+    set.push_back("evaluator.walk=" + walk);
+    const auto run = run_scene(scene, set);
+    const auto& g = run.raw.grid;
+    if (expected.empty())
+      for (std::size_t j = 0; j < g.ny; ++j)
+        for (std::size_t i = 0; i < g.nx; ++i)
+          expected.push_back(
+              testing::brute_force_height(*m.tool, *run.layout.path, g.x(i), g.y(j)));
+    double worst = 0;
+    std::string where;
+    for (std::size_t j = 0; j < g.ny; ++j)
+      for (std::size_t i = 0; i < g.nx; ++i)
+        if (const double d = std::abs(run.raw.at(i, j) - expected[j * g.nx + i]); d > worst) {
+          worst = d;
+          std::ostringstream at;
+          at.precision(12);
+          at << "(" << g.x(i) << ", " << g.y(j) << "): " << run.raw.at(i, j) << " against "
+             << expected[j * g.nx + i];
+          where = at.str();
+        }
+    INFO(walk << " walk: largest difference " << worst * 1e6 << " nm at " << where << " over "
+              << g.size() << " nodes");
+    CHECK(worst <= 1e-7);
+  }
 }

@@ -130,6 +130,12 @@ class TOPOMILL_API ToolPath {
   Runout runout_;
   bool corrected_ = false;
   bool vertical_ = true;
+  // Per pass with a fixed posture, its frame (constant over the pass: computed once, since the
+  // runout's offset and both evaluators ask for it at every step).
+  std::vector<Eigen::Matrix3d> fixed_frame_;
+  // The frame of an axis a (columns x_t, y_t, a).
+  static Eigen::Matrix3d frame_of(const Vec3& a);
+  Vec3 axis_of(std::size_t p, double t) const;
   double max_correction_ = 0.0;
 };
 

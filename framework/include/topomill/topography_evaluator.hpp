@@ -51,10 +51,11 @@ class TOPOMILL_API TopographyEvaluator : public Model {
   virtual void evaluate(const EvaluationRequest& request, HeightMap& map,
                         WorkCounts& counts) const = 0;
 
-  // Whether evaluate() follows a tilted tool (ToolPath::vertical() false: edge points turned by
-  // ToolPath::tool_frame). An evaluator must say so: by default the core refuses such a scene
-  // for it, rather than let an evaluator written for the vertical tool draw a wrong surface.
-  virtual bool follows_tilted_tool() const { return false; }
+  // Whether evaluate() follows a pass with this tool posture (other than vertical: edge points
+  // turned by ToolPath::tool_frame). An evaluator must say so: by default only the vertical tool,
+  // and the core refuses any other posture for it rather than let an evaluator written for the
+  // vertical tool draw a wrong surface.
+  virtual bool follows(const ToolPath::Posture& posture) const { return posture.vertical(); }
 
   // The cost of evaluate() for this request (see EvaluationCost); by default unknown (zero).
   virtual EvaluationCost estimate_cost(const EvaluationRequest& request, const Grid& grid) const {
