@@ -266,7 +266,10 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
   const double plan_hi = std::max(norm(ax, ay), norm(bx, by)) + grow;
   Span none{0, s_.R, INFINITY, INFINITY, INFINITY, 0};
   none.plan_lo = plan_lo;
-  if (plan_lo >= s_.R) return none.rho_lo = s_.R, none;  // off the ball all along
+  if (plan_lo >= s_.R) {  // off the ball all along (and so out of contact)
+    none.rho_lo = s_.R;
+    return none;
+  }
   // Next to the ball's rim in plan the lift has no bound (the ball point moves vertically).
   const double h = plan_hi < s_.R ? std::sqrt(s_.R2 - plan_hi * plan_hi) : 0.0;
   if (h < 1e-6 * s_.R) return none;

@@ -251,6 +251,9 @@ TEST_CASE("tooth_passage equals a brute force under a tilted tool", "[posture][f
   };
   const Case c = GENERATE_COPY(
       Case{"arc at 30 deg, lead 15, tilt 10", kArc, 30, {"path.lead=15", "path.tilt=10"}, ""},
+      // Lead 30 on the 30 deg face: the axis along the normal at the patch's centre, the tip in
+      // the cut and the axis over the nodes on a slope.
+      Case{"arc at 30 deg, lead 30: the axis along the normal", kArc, 30, {"path.lead=30"}, ""},
       // The tip within about 10 um of the ball's bottom: it cuts, and the axis passes over
       // nodes (exact windows in the tool frame; with tilts of a few degrees the tip is microns
       // above the cut and never decides a node).

@@ -107,10 +107,18 @@ double brute_force_height(const topomill::ToolGeometry& tool, const topomill::To
             phase(p, tooth, 0.5 * (lo + hi), hr, rr);
             best = std::min(best, hr);
           }
-          // The tip is a point of every edge: a node on the pass's line is cut by it.
-          if (path.pass(p).posture.vertical() && std::abs(x - path.pass(p).x) < 1e-9 &&
-              rho1 < v * step)
-            best = std::min(best, h1);
+          // The tip is a point of every edge: a node on the line the tip follows is cut by it
+          // (the pass's line for a vertical tool; R a off it in plan for a tilted one, where the
+          // ball point over the node moves up to 1 / cos(alpha) as fast as the centre, alpha
+          // the tilt from the vertical).
+          if (path.pass(p).posture.vertical()) {
+            if (std::abs(x - path.pass(p).x) < 1e-9 && rho1 < v * step) best = std::min(best, h1);
+          } else {
+            const topomill::Vec3 a = posture_axis(path, p, t1), c = path.centre(p, t1);
+            const bool along_y = path.pass(p).dy != 0;
+            const double across = along_y ? x - (c.x() - R * a.x()) : y - (c.y() - R * a.y());
+            if (std::abs(across) < 1e-9 && rho1 < v * step / a.z()) best = std::min(best, h1);
+          }
           t0 = t1, g0 = g1, rho0 = rho1;
         }
       }
