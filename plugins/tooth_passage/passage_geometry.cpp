@@ -37,6 +37,8 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
   lag_tip = tool->lag(tool->min_polar_angle());
   // A probe may look a revolution beyond either end of a pass.
   const double pad = 2 * rev;
+  const double k1 = lag_shape.over(0.0, 0.95 * R).k1;  // the lag's slope over the ball
+  gap_lag = std::sqrt(1 + k1 * k1);
   for (std::size_t p = 0; p < path->passes(); ++p) {
     centre.emplace_back(*path, p, -pad, path->pass(p).t_end + pad, kTableTolerance);
     // A fixed posture keeps the frame over the pass (the only tilt followed: tooth_passage.cpp).
@@ -54,10 +56,7 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     lowest_centre.push_back(centre.back().lowest_z(0.0, path->pass(p).t_end));
     nominal_speed.push_back(centre.back().top_speed());
     const double v = top_speed(p, -INFINITY, INFINITY).first, half = 0.5 * rev;
-    const double k1 = lag_shape.over(0.0, 0.95 * R).k1;
-    gap_lag = std::sqrt(1 + k1 * k1);
-    gap_rho.emplace_back(1.01 * (v * half + std::sqrt(1 + k1 * k1) * v / std::abs(omega)),
-                         0.95 * R - v * half);
+    gap_rho.emplace_back(1.01 * (v * half + gap_lag * v / std::abs(omega)), 0.95 * R - v * half);
     // The line from the pass's nominal start to its end in plan; the correction's plan offset at
     // most its box's farthest corner.
     const Vec3 a = path->nominal_centre(p, 0.0), b = path->nominal_centre(p, path->pass(p).t_end);

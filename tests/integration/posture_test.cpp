@@ -50,6 +50,38 @@ double largest_difference(const topomill::HeightMap& a, const topomill::HeightMa
   return worst;
 }
 
+// A map against brute-force heights at every node (row by row): the largest and mean
+// difference, and where the largest is with both heights (to rerun that node when it fails).
+struct Against {
+  double worst = 0, mean = 0;
+  std::string where;
+};
+Against against(const topomill::HeightMap& map, const std::vector<double>& expected) {
+  const auto& g = map.grid;
+  Against r;
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i) {
+      const double d = std::abs(map.at(i, j) - expected[j * g.nx + i]);
+      r.mean += d / static_cast<double>(g.size());
+      if (d > r.worst) {
+        r.worst = d;
+        std::ostringstream at;
+        at.precision(12);
+        at << "(" << g.x(i) << ", " << g.y(j) << "): " << map.at(i, j) << " against "
+           << expected[j * g.nx + i];
+        r.where = at.str();
+      }
+    }
+  return r;
+}
+std::vector<double> brute_force_map(const topomill::Prepared& m, const topomill::ToolPath& path,
+                                    const topomill::Grid& g) {
+  std::vector<double> out;
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i)
+      out.push_back(testing::brute_force_height(*m.tool, path, g.x(i), g.y(j)));
+  return out;
+}
 }  // namespace
 
 TEST_CASE("the tool axis and frame follow the posture's definition", "[posture]") {
@@ -137,29 +169,12 @@ TEST_CASE("the Z-map cuts a tilted tool where an independent brute force does", 
   const std::string scene = small(kPlate, 0, 30, "cw", 0.002, 0.03);
   const auto run = run_scene(scene, set);
   const auto m = prepared(scene, set);
-  const auto& g = run.raw.grid;
-  double worst = 0, sum = 0;
-  std::string where;
-  for (std::size_t j = 0; j < g.ny; ++j)
-    for (std::size_t i = 0; i < g.nx; ++i) {
-      const double expected = testing::brute_force_height(*m.tool, *m.layout.path, g.x(i), g.y(j));
-      const double d = std::abs(run.raw.at(i, j) - expected);
-      sum += d;
-      if (d > worst) {
-        worst = d;
-        std::ostringstream at;
-        at.precision(12);
-        at << "(" << g.x(i) << ", " << g.y(j) << "): " << run.raw.at(i, j) << " against "
-           << expected;
-        where = at.str();
-      }
-    }
-  const double mean = sum / static_cast<double>(g.size());
-  INFO("Z-map against the brute force: largest " << worst * 1e6 << " nm at " << where << ", mean "
-                                                 << mean * 1e6 << " nm over " << g.size()
-                                                 << " nodes");
-  CHECK(worst < 85e-6);
-  CHECK(mean < 20e-6);
+  const Against r = against(run.raw, brute_force_map(m, *m.layout.path, run.raw.grid));
+  INFO("Z-map against the brute force: largest " << r.worst * 1e6 << " nm at " << r.where
+                                                 << ", mean " << r.mean * 1e6 << " nm over "
+                                                 << run.raw.grid.size() << " nodes");
+  CHECK(r.worst < 85e-6);
+  CHECK(r.mean < 20e-6);
 }
 
 TEST_CASE("a tilt one way cutting cw is the mirror image of the tilt the other way cutting ccw",
@@ -294,26 +309,10 @@ TEST_CASE("tooth_passage equals a brute force under a tilted tool", "[posture][f
     set.push_back("evaluator.plugin=tooth_passage");
     set.push_back("evaluator.walk=" + walk);
     const auto run = run_scene(scene, set);
-    const auto& g = run.raw.grid;
-    if (expected.empty())
-      for (std::size_t j = 0; j < g.ny; ++j)
-        for (std::size_t i = 0; i < g.nx; ++i)
-          expected.push_back(
-              testing::brute_force_height(*m.tool, *run.layout.path, g.x(i), g.y(j)));
-    double worst = 0;
-    std::string where;
-    for (std::size_t j = 0; j < g.ny; ++j)
-      for (std::size_t i = 0; i < g.nx; ++i)
-        if (const double d = std::abs(run.raw.at(i, j) - expected[j * g.nx + i]); d > worst) {
-          worst = d;
-          std::ostringstream at;
-          at.precision(12);
-          at << "(" << g.x(i) << ", " << g.y(j) << "): " << run.raw.at(i, j) << " against "
-             << expected[j * g.nx + i];
-          where = at.str();
-        }
-    INFO(walk << " walk: largest difference " << worst * 1e6 << " nm at " << where << " over "
-              << g.size() << " nodes");
-    CHECK(worst <= 1e-7);
+    if (expected.empty()) expected = brute_force_map(m, *run.layout.path, run.raw.grid);
+    const Against r = against(run.raw, expected);
+    INFO(walk << " walk: largest difference " << r.worst * 1e6 << " nm at " << r.where << " over "
+              << run.raw.grid.size() << " nodes");
+    CHECK(r.worst <= 1e-7);
   }
 }
