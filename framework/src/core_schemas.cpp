@@ -62,11 +62,16 @@ Schema runout_schema() {
 Schema region_schema() {
   Schema s;
   s.add_number("lambda",
-               "Inclination of the surface normal at the centre of the patch, from +Z towards +Y")
+               "Inclination of the surface normal at the centre of the patch, from +Z towards +Y "
+               "(give this or centre)")
       .with_unit("deg")
       .at_least(-90)
-      .at_most(90)
-      .is_required();
+      .at_most(90);
+  s.add_number_array("centre",
+                     "The patch's centre in plan [x, y]: over the uncut surface point there (give "
+                     "this or lambda; with cutter-location data, where the data cuts)")
+      .with_unit("mm")
+      .with_length(2);
   s.add_number_array("size", "Patch size [along X, along the surface in Y]")
       .with_unit("mm")
       .with_length(2)
@@ -89,9 +94,10 @@ Schema output_schema() {
   Schema s;
   s.add_string("dir", "Output directory, relative to the working directory (--out overrides)")
       .with_default(std::string());
-  s.add_string_array("formats", {"csv", "gsf", "x3p", "sdf", "vts", "png"},
-                     "Height-map files to write besides summary.json (raw and residual maps; png: "
-                     "the residual as a heat map and a shaded 3D view)")
+  s.add_string_array("formats", {"csv", "gsf", "x3p", "sdf", "vts", "png", "cl"},
+                     "Files to write besides summary.json: height maps (raw and residual; png: "
+                     "the residual as a heat map and a shaded 3D view); cl: the tool path as "
+                     "cutter-location data (tool_path.csv, read by cl_file)")
       .with_default(std::vector<std::string>{"csv", "gsf", "x3p", "png"});
   return s;
 }

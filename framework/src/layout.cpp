@@ -45,6 +45,7 @@ double y_at_arc(const SurfaceShape& surface, double s, double y_guess, double sp
 static void check_posture(const ToolPath& path, Layout& L, const SlotTable& slot) {
   L.lambda_max = 0;  // the contact's polar angle about the axis, no longer the inclination
   for (std::size_t p = 0; p < path.passes(); ++p) {
+    if (!path.pass(p).waypoints.empty()) continue;  // check_waypoints
     const double t_end = path.pass(p).t_end;
     for (double t : {0.0, 0.5 * t_end, t_end}) {
       const double angle = path.contact_angle(p, t);
@@ -65,6 +66,73 @@ static void check_posture(const ToolPath& path, Layout& L, const SlotTable& slot
   }
 }
 
+// A pass of cutter-location data, checked point by point against what the core can follow: each
+// named by its file and line.
+template <class Defect>
+static ToolPath::Pass waypoint_pass(const PassLine& l, const SurfaceShape& surface,
+                                    const Defect& defect) {
+  if (!std::isfinite(l.phase)) throw defect("laid out a pass whose phase is not finite");
+  if (l.points.size() < 2) throw defect("laid out a pass of fewer than two points");
+  if (l.posture.normal || l.posture.lead != 0 || l.posture.tilt != 0)
+    throw defect("laid out points with a lead, tilt or normal posture (the points give the axis)");
+  ToolPath::Pass p{};
+  p.phase = l.phase;
+  for (std::size_t k = 0; k < l.points.size(); ++k) {
+    const ClPoint& c = l.points[k];
+    const SourceRef at{l.source, c.line, 1};
+    auto refuse = [&](const std::string& what) { return InputError(at, "path.file", what); };
+    const ToolPath::Waypoint& w = c.at;
+    if (!w.centre.allFinite() || !w.axis.allFinite() || !std::isfinite(w.speed))
+      throw defect("read a point that is not finite");
+    if (std::abs(w.axis.norm() - 1) > 1e-9) throw defect("read an axis that is not a unit vector");
+    if (!(w.centre.y() > surface.y_min() && w.centre.y() < surface.y_max()))
+      throw refuse("the ball centre's y = " + format_number(w.centre.y()) +
+                   " mm is off the workpiece surface (y from " + format_number(surface.y_min()) +
+                   " to " + format_number(surface.y_max()) + " mm): expected points over it");
+    if (k + 1 < l.points.size() && !(w.speed > 0))
+      throw refuse("the feed to the next point is " + format_number(w.speed * 60) +
+                   " mm/min: expected more than 0");
+    if (k + 1 < l.points.size() && w.centre == l.points[k + 1].at.centre)
+      throw refuse("the point repeats the one before the next (" + std::to_string(c.line) +
+                   " and " + std::to_string(l.points[k + 1].line) +
+                   "): expected the tool to move between points (drop one)");
+    p.waypoints.push_back(w);
+    // Not vertical as soon as one point's axis is not: then the tool frame follows the points.
+    p.posture.given = p.posture.given || w.axis != Vec3::UnitZ();
+  }
+  return p;
+}
+
+// Every point of cutter-location data: its contact within the ball's lower half (about the
+// given axis, or the vertical), named by file and line; and the steepest contact (lambda_max).
+static void check_waypoints(const ToolPath& path, const std::vector<PassLine>& lines, Layout& L) {
+  for (std::size_t p = 0; p < path.passes(); ++p) {
+    const ToolPath::Pass& pass = path.pass(p);
+    if (pass.waypoints.empty()) continue;
+    const std::vector<ClPoint>& points = lines[p].points;
+    double t = 0;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      if (k > 0)
+        t += (pass.waypoints[k].centre - pass.waypoints[k - 1].centre).norm() /
+             pass.waypoints[k - 1].speed;
+      const double y = path.surface_y(p, t), angle = path.contact_angle(p, t);
+      const SourceRef at{lines[p].source, points[k].line, 1};
+      if (!std::isfinite(y) || !std::isfinite(angle))
+        throw InputError(at, "path.file",
+                         "the ball centre has no point of the workpiece surface beneath it: "
+                         "expected points over the surface");
+      L.lambda_max = std::max(L.lambda_max, angle);
+      if (angle + L.kappa < M_PI / 2) continue;
+      throw InputError(at, "path.file",
+                       "the tool's axis is " + format_number(angle / kDeg) +
+                           " deg from the surface normal here, and with the cut's half-width of " +
+                           format_number(L.kappa / kDeg) +
+                           " deg the ball's equator would cut (the shank above it would rub): "
+                           "expected an axis nearer the normal");
+    }
+  }
+}
+
 Layout make_layout(const Scene& scene, const ToolGeometry& tool,
                    std::shared_ptr<const SurfaceShape> surface, const PathModel& path_model) {
   const Params& cut = scene.table("cutting");
@@ -76,7 +144,6 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   const double rpm = cut.number("spindle_speed");
   const double h = region.number("spacing");
   const auto size = region.numbers("size");
-  const double lambda_c = region.number("lambda") * kDeg;
 
   if (ap > R)
     throw InputError(cut.where("depth_of_cut"), "cutting.depth_of_cut",
@@ -104,12 +171,33 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   L.spacing = h;
   L.kappa = catw_kappa(R, ap, r);
 
-  double y_c = 0;
-  try {
-    y_c = surface->y_at_inclination(lambda_c);
-  } catch (const ParamError& e) {
-    throw InputError(region.where("lambda"), "region.lambda", e.what());
+  // The patch's centre: over the uncut surface point at region.lambda, or at region.centre.
+  const bool by_centre = region.has("centre");
+  if (by_centre == region.has("lambda"))
+    throw InputError(region.table_where(), "region",
+                     by_centre ? "both lambda and centre place the patch: expected one of them"
+                               : "missing key: expected lambda (deg, the inclination at the "
+                                 "patch's centre) or centre ([x, y] in mm) to place the patch");
+  // The key that placed it, for the messages below.
+  const char* place_key = by_centre ? "centre" : "lambda";
+  const SourceRef place_at = region.where(place_key);
+  const std::string place_name = std::string("region.") + place_key;
+  double x_c = 0, y_c = 0;
+  if (by_centre) {
+    x_c = region.numbers("centre")[0], y_c = region.numbers("centre")[1];
+    if (!(y_c > surface->y_min() && y_c < surface->y_max()))
+      throw InputError(place_at, place_name,
+                       "y = " + format_number(y_c) + " mm is off the workpiece surface (y from " +
+                           format_number(surface->y_min()) + " to " +
+                           format_number(surface->y_max()) + " mm): expected a y on it");
+  } else {
+    try {
+      y_c = surface->y_at_inclination(region.number("lambda") * kDeg);
+    } catch (const ParamError& e) {
+      throw InputError(place_at, place_name, e.what());
+    }
   }
+  const double lambda_c = surface->inclination(y_c);
   const double s_c = arc_of(*surface, y_c);
   L.s_lo = s_c - size[1] / 2;
   L.s_hi = s_c + size[1] / 2;
@@ -122,8 +210,8 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
                      "the patch runs past the end of the workpiece surface (its arc spans " +
                          format_number(arc_min) + " to " + format_number(arc_max) +
                          " mm; the patch " + format_number(L.s_lo) + " to " +
-                         format_number(L.s_hi) +
-                         " mm): expected a smaller region.size or region.lambda");
+                         format_number(L.s_hi) + " mm): expected a smaller region.size or " +
+                         place_name);
   // The patch lies on the machined surface, ap below the uncut one along the normal: its ends
   // project to y = y_s - ap sin(lambda(y_s)), y_s the uncut surface point at the same arc position.
   const double span = size[1] + 1.0;
@@ -156,7 +244,7 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   Grid& g = L.grid;
   g.nx = static_cast<std::size_t>(std::llround(size[0] / h)) + 1;
   g.dx = size[0] / static_cast<double>(g.nx - 1);
-  g.x0 = -size[0] / 2;
+  g.x0 = x_c - size[0] / 2;
   g.ny = static_cast<std::size_t>(std::ceil((y_hi - y_lo) / dy_target)) + 1;
   if (g.ny >= 3) {
     g.dy = (y_hi - y_lo) / static_cast<double>(g.ny - 1);
@@ -188,8 +276,9 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   PathRequest rq;
   rq.surface = surface.get();
   rq.stepover = ae, rq.feed_speed = vf, rq.run = run;
-  // The grid is symmetric about x = 0: its far side is -x0 exactly.
-  rq.x_lo = g.x0, rq.x_hi = -g.x0, rq.y_lo = y_lo, rq.y_hi = y_hi;
+  rq.radius = R, rq.offset = R - ap;
+  // The grid is symmetric about x_c: its far side is -x0 exactly when that is 0.
+  rq.x_lo = g.x0, rq.x_hi = x_c == 0 ? -g.x0 : x_c + size[0] / 2, rq.y_lo = y_lo, rq.y_hi = y_hi;
   rq.s_lo = L.s_lo, rq.s_hi = L.s_hi, rq.s_c = s_c, rq.y_c = y_c;
   rq.stop = &stop_flag();
   const SlotTable& path_slot = scene.slot("path");
@@ -213,7 +302,20 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   // halved its step until memory ran out.)
   std::vector<ToolPath::Pass> passes;
   double y_first = INFINITY, y_last = -INFINITY, reach = 0;
+  bool near_patch = false;  // some waypoint segment's box comes within R of the patch
   for (const PassLine& l : lines) {
+    if (!l.points.empty()) {
+      passes.push_back(waypoint_pass(l, *surface, defect));
+      for (std::size_t k = 0; k + 1 < l.points.size(); ++k) {
+        const Vec3 &a = l.points[k].at.centre, &b = l.points[k + 1].at.centre;
+        near_patch =
+            near_patch ||
+            (std::max(a.x(), b.x()) > rq.x_lo - R && std::min(a.x(), b.x()) < rq.x_hi + R &&
+             std::max(a.y(), b.y()) > y_lo - R && std::min(a.y(), b.y()) < y_hi + R);
+      }
+      continue;
+    }
+    near_patch = true;
     const double along_x = l.x1 - l.x0, along_y = l.y1 - l.y0;
     if (!(std::isfinite(along_x) && std::isfinite(along_y) && std::isfinite(l.phase) &&
           std::isfinite(l.posture.lead) && std::isfinite(l.posture.tilt)))
@@ -221,7 +323,8 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
     if ((along_x != 0) == (along_y != 0))
       throw defect("laid out a pass that is not along X or Y, or has no length");
     // One of the two is zero: the sum is the length exactly.
-    ToolPath::Pass p{l.x0, l.y0, (std::abs(along_x) + std::abs(along_y)) / vf, l.phase, 0, 0, {}};
+    ToolPath::Pass p{l.x0, l.y0, (std::abs(along_x) + std::abs(along_y)) / vf, l.phase, 0, 0,
+                     {},   {}};
     p.dx = along_x > 0 ? 1 : along_x < 0 ? -1 : 0;
     p.dy = along_y > 0 ? 1 : along_y < 0 ? -1 : 0;
     p.posture = l.posture;
@@ -229,19 +332,27 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
     y_first = std::min({y_first, l.y0, l.y1}), y_last = std::max({y_last, l.y0, l.y1});
     if (along_y != 0) reach = 2 * fz * teeth;
   }
+  if (!near_patch)
+    throw InputError(place_at, place_name,
+                     "no pass of the cutter-location data comes within the ball's radius of the "
+                     "patch (x " +
+                         format_number(rq.x_lo) + " to " + format_number(rq.x_hi) + " mm, y " +
+                         format_number(y_lo) + " to " + format_number(y_hi) +
+                         " mm): expected the patch where the data cuts");
   if (y_first - reach <= surface->y_min() || y_last + reach >= surface->y_max())
     throw InputError(
-        region.where("lambda"), "region.lambda",
-        "the patch at this lambda, with the tool's run-in and run-out, reaches past "
-        "the end of the workpiece surface (the tool path runs " +
+        place_at, place_name,
+        std::string(by_centre ? "the patch there" : "the patch at this lambda") +
+            ", with the tool's run-in and run-out, reaches past the end of the workpiece surface "
+            "(the tool path runs " +
             format_number(run + reach) + " mm beyond each end of the patch, at " +
             format_number(fz * teeth) +
             " mm per revolution: three revolutions of run-in or run-out and the depth" +
             (reach > 0 ? std::string(", and two an evaluator may look beyond them") : "") +
-            "); choose a smaller lambda, a larger radius, or "
-            "fewer teeth or a smaller feed");
+            "); choose a smaller " + (by_centre ? "|y|" : "lambda") +
+            ", a larger radius, or fewer teeth or a smaller feed");
   for (double y : {y_first, y_lo, y_c, y_hi, y_last})
-    L.lambda_max = std::max(L.lambda_max, std::abs(surface->inclination(y)));
+    if (std::isfinite(y)) L.lambda_max = std::max(L.lambda_max, std::abs(surface->inclination(y)));
 
   try {
     L.path = std::make_shared<ToolPath>(surface, R - ap, vf, omega, std::move(passes));
@@ -260,6 +371,7 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
     throw defect(std::string("laid out passes the core cannot follow: ") + e.what());
   }
   if (!L.path->vertical()) check_posture(*L.path, L, path_slot);
+  check_waypoints(*L.path, lines, L);
   return L;
 }
 

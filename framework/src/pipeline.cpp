@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <memory>
 #include <thread>
 
 #include "form_removal.hpp"
@@ -11,6 +12,7 @@
 #include "log.hpp"
 #include "metrology/form_removal.hpp"
 #include "resources.hpp"
+#include "swept_path.hpp"
 #include "topomill/surface_shape.hpp"
 #include "topomill/tool_geometry.hpp"
 
@@ -81,14 +83,30 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
     if (scene.enabled(name))
       out.deformations.emplace_back(name, make<Deformation>(scene, catalog, name));
   out.layout = make_layout(scene, *out.tool, out.surface, *out.path);
+  const SlotTable& path_slot = scene.slot("path");
+  const std::string evaluator = scene.slot("evaluator").plugin;
+  if (out.layout.path->feed_axis() == ToolPath::FeedAxis::None && !out.evaluator->follows_curves())
+    throw InputError(path_slot.where, "path",
+                     "the evaluator '" + evaluator +
+                         "' follows straight passes along X or Y only, all one way at one speed, "
+                         "and this path has others (radial, spiral or bent passes, or a change of "
+                         "feed): expected evaluator.plugin = \"zmap\", which follows any");
   for (std::size_t p = 0; p < out.layout.path->passes(); ++p) {
     const ToolPath::Posture& q = out.layout.path->pass(p).posture;
     if (out.evaluator->follows(q)) continue;
-    const SlotTable& path = scene.slot("path");
+    const SlotTable& path = path_slot;
+    if (q.given)
+      throw InputError(path.params.has("file") ? path.params.where("file") : path.where,
+                       "path.file",
+                       "the evaluator '" + evaluator +
+                           "' does not follow a tool axis that turns along a pass (pass " +
+                           std::to_string(p + 1) +
+                           " of the cutter-location data): expected a fixed axis over each pass "
+                           "(its README says which), or evaluator.plugin = \"zmap\", which "
+                           "follows any");
     const std::string key = q.normal ? "posture" : q.tilt != 0 ? "tilt" : "lead";
     throw InputError(path.params.has(key) ? path.params.where(key) : path.where, "path." + key,
-                     "the evaluator '" + scene.slot("evaluator").plugin +
-                         "' does not follow the tool's posture " +
+                     "the evaluator '" + evaluator + "' does not follow the tool's posture " +
                          (q.normal ? "along the surface normal" : "fixed") + " with lead " +
                          format_number(q.lead * 180 / M_PI) + " deg and tilt " +
                          format_number(q.tilt * 180 / M_PI) +
@@ -139,6 +157,22 @@ std::function<bool(const Vec3&)> material_test(const ToolPath& path, std::size_t
   };
 }
 
+// The same for cutter-location data: below the uncut surface and farther than R from the centre's
+// path before the tool's own trail (the last 2 R of it), on this pass or any before it.
+std::function<bool(const Vec3&)> material_test(const ToolPath& path, const SweptPath& swept,
+                                               std::size_t p, const CutState& st, double R) {
+  const Vec3 centre = path.nominal_centre(p, st.time);
+  const double recent = 2 * R / path.speed(p, st.time);
+  auto cut = swept.before(p, st.time, recent, centre, 2 * R);
+  const SurfaceShape* surface = &path.surface();
+  return [=, cut = std::move(cut)](const Vec3& offset) {
+    const Vec3 point = centre + offset;
+    for (const auto& s : cut)
+      if (SweptPath::distance(point, s.first, s.second) < R) return false;
+    return surface->normal_residual(point.y(), point.z(), 0.0) < 0;
+  };
+}
+
 // A tilted tool's state as the force and deformation models read it: in the tool frame (its axis
 // as z, the spindle angle measured about it), the feed direction turned into it, the contact's
 // polar angle about the axis for the surface's inclination, and the material test turned back.
@@ -178,6 +212,9 @@ static void apply_effects(const Scene& scene, const Prepared& m, unsigned thread
       states[p].resize(n), forces[p].resize(n);
       for (std::size_t k = 0; k < n; k += kBlock) blocks.emplace_back(p, k);
     }
+    std::unique_ptr<SweptPath> swept;  // only for cutter-location data
+    for (std::size_t p = 0; p < path.passes() && !swept; ++p)
+      if (!path.pass(p).waypoints.empty()) swept = std::make_unique<SweptPath>(path);
     const double fz = cut.number("feed_per_tooth"), ap = cut.number("depth_of_cut"),
                  ae = cut.number("stepover");
     auto sample = [&](std::size_t p, std::size_t k) {
@@ -185,7 +222,12 @@ static void apply_effects(const Scene& scene, const Prepared& m, unsigned thread
       st.time = static_cast<double>(k) * dt;
       st.spindle_angle = path.spindle_angle(p, st.time);
       st.feed_direction = path.feed_direction(p, st.time);
-      st.feed_per_tooth = fz;
+      // Cutter-location data sets its own feed: the chip follows it.
+      const bool waypoints = !path.pass(p).waypoints.empty();
+      st.feed_per_tooth = waypoints
+                              ? path.speed(p, st.time) *
+                                    (2 * M_PI / std::abs(path.spindle_rate())) / m.tool->teeth()
+                              : fz;
       st.inclination = path.surface().inclination(path.surface_y(p, st.time));
       st.alpha_min = std::max(0.0, std::abs(st.inclination) - L.kappa);
       st.alpha_max = std::min(M_PI / 2, std::abs(st.inclination) + L.kappa);
@@ -193,7 +235,8 @@ static void apply_effects(const Scene& scene, const Prepared& m, unsigned thread
       st.depth_of_cut = ap;
       st.stepover = ae;
       st.runout = path.runout().offset, st.runout_angle = path.runout().angle;
-      st.in_material = material_test(path, p, st, m.tool->radius());
+      st.in_material = waypoints ? material_test(path, *swept, p, st, m.tool->radius())
+                                 : material_test(path, p, st, m.tool->radius());
       if (!path.pass(p).posture.vertical()) to_tool_frame(path, p, L.kappa, st);
       forces[p][k] = in_table(scene.slot("force"), [&] { return m.force->evaluate(*m.tool, st); });
       if (!path.pass(p).posture.vertical())

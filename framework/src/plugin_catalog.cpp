@@ -242,6 +242,8 @@ std::unique_ptr<Model> PluginCatalog::construct(const ModelEntry& entry, const P
   } catch (const ParamError& e) {
     std::string key = params.path().empty() ? e.key() : params.path() + "." + e.key();
     throw InputError(params.where(e.key()), key, e.what());
+  } catch (const InputError&) {
+    throw;  // a model that reads a file of its own names a place in it (cl_file: line, column)
   } catch (const std::exception& e) {
     throw PluginError("model '" + entry.info.name + "' from '" + entry.library->path +
                       "' failed to construct: " + e.what());

@@ -66,6 +66,11 @@ std::vector<PassLine> parallel_passes(const PathRequest& rq, bool across, const 
                                       const ToolPath::Posture& posture, Reversed reversed) {
   const double ae = rq.stepover;
   std::vector<PassLine> passes;
+  auto add = [&](double x0, double y0, double x1, double y1, double angle) {
+    PassLine l;
+    l.x0 = x0, l.y0 = y0, l.x1 = x1, l.y1 = y1, l.phase = angle, l.posture = posture;
+    passes.push_back(l);
+  };
   if (!across) {
     const long k_lo = static_cast<long>(std::floor(rq.x_lo / ae)) - 1;
     const long k_hi = static_cast<long>(std::ceil(rq.x_hi / ae)) + 1;
@@ -74,9 +79,9 @@ std::vector<PassLine> parallel_passes(const PathRequest& rq, bool across, const 
       const double x = static_cast<double>(k) * ae;
       const double angle = phase.start + static_cast<double>(k - k_lo) * phase.shift;
       if (reversed(k))
-        passes.push_back({x, y_last, x, y_first, angle, posture});
+        add(x, y_last, x, y_first, angle);
       else
-        passes.push_back({x, y_first, x, y_last, angle, posture});
+        add(x, y_first, x, y_last, angle);
     }
   } else {
     const long k_lo = static_cast<long>(std::floor((rq.s_lo - rq.s_c) / ae)) - 1;
@@ -88,9 +93,9 @@ std::vector<PassLine> parallel_passes(const PathRequest& rq, bool across, const 
       const double y = y_at_arc(*rq.surface, rq.s_c + static_cast<double>(k) * ae, rq.y_c, span_k);
       const double angle = phase.start + static_cast<double>(k - k_lo) * phase.shift;
       if (reversed(k))
-        passes.push_back({x_last, y, x_first, y, angle, posture});
+        add(x_last, y, x_first, y, angle);
       else
-        passes.push_back({x_first, y, x_last, y, angle, posture});
+        add(x_first, y, x_last, y, angle);
     }
   }
   return passes;

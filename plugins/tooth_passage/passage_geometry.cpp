@@ -19,7 +19,7 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
       R(rq.tool->radius()),
       R2(R * R),
       omega(rq.path->spindle_rate()),
-      speed(std::max(rq.path->feed_speed(), 1e-12)),
+      speed(slowest(*rq.path)),
       rev(kTwoPi / std::abs(omega)),
       period(rev / rq.tool->teeth()),
       reach(R + rq.path->max_correction()),
@@ -76,6 +76,18 @@ std::pair<double, double> PassageSetup::top_speed(std::size_t p, double ta, doub
   const auto [h, v] = nominal_speed[p];
   const auto [ch, cv] = centre[p].correction_speed(ta, tb);
   return {h + ch, v + cv};
+}
+
+double PassageSetup::slowest(const ToolPath& path) {
+  // The feed in plan (the paper's: uniform in Y), or on a pass of cutter-location data its own
+  // (one per pass: a straight line) times the share of it in plan.
+  double v = INFINITY;
+  for (std::size_t p = 0; p < path.passes(); ++p) {
+    const Vec3 f = path.feed_direction(p, 0.0);
+    v = std::min(v, path.pass(p).waypoints.empty() ? path.feed_speed()
+                                                   : path.speed(p, 0.0) * std::hypot(f.x(), f.y()));
+  }
+  return std::max(v, 1e-12);
 }
 
 double PassageSetup::level_time(std::size_t p, double x, double y) const {

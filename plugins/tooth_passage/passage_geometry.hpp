@@ -39,7 +39,8 @@ struct PassageSetup {
 
   const ToolPath* path;
   const ToolGeometry* tool;
-  double R, R2, omega, speed;
+  double R, R2, omega, speed;  // speed: the slowest feed along a pass (mm/s)
+  static double slowest(const ToolPath& path);
   double rev;     // one spindle revolution, s
   double period;  // one tooth period, s
   double reach;   // R plus the largest correction: farther across, a pass cannot touch

@@ -51,6 +51,7 @@ class ZMap : public TopographyEvaluator {
   // each (measured: 368e6 points in 11.2 s on the paper's lambda = 30 deg scene, one thread),
   // the edge points per tooth from Eq. 44 over the widened contact range at the steepest lambda.
   bool follows(const ToolPath::Posture&) const override { return true; }  // any: it turns points
+  bool follows_curves() const override { return true; }  // any: it moves them with the centre
 
   EvaluationCost estimate_cost(const EvaluationRequest& rq, const Grid& g) const override {
     EvaluationCost c;

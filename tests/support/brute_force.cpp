@@ -18,6 +18,20 @@ double wrap(double a) {
 topomill::Vec3 posture_axis(const topomill::ToolPath& path, std::size_t p, double t) {
   using topomill::Vec3;
   const auto& pass = path.pass(p);
+  if (pass.posture.given) {
+    // CL data: the points' axes, blended linearly between them by time (each segment's time
+    // its length over its speed) and normalised.
+    const auto& w = pass.waypoints;
+    double t0 = 0;
+    for (std::size_t k = 0; k + 1 < w.size(); ++k) {
+      const double t1 = t0 + (w[k + 1].centre - w[k].centre).norm() / w[k].speed;
+      if (t <= t1 || k + 2 == w.size()) {
+        const double u = std::clamp((t - t0) / (t1 - t0), 0.0, 1.0);
+        return ((1 - u) * w[k].axis + u * w[k + 1].axis).normalized();
+      }
+      t0 = t1;
+    }
+  }
   const double lead = pass.posture.lead, tilt = pass.posture.tilt;
   const Vec3 Z(0, 0, 1);
   Vec3 n = Z, f(pass.dx, pass.dy, 0);
@@ -112,7 +126,10 @@ double brute_force_height(const topomill::ToolGeometry& tool, const topomill::To
           // ball point over the node moves up to 1 / cos(alpha) as fast as the centre, alpha
           // the tilt from the vertical).
           if (path.pass(p).posture.vertical()) {
-            if (std::abs(x - path.pass(p).x) < 1e-9 && rho1 < v * step) best = std::min(best, h1);
+            // (CL data's passes go anywhere: there the axis over the node is the test itself.)
+            const bool on_line =
+                !path.pass(p).waypoints.empty() || std::abs(x - path.pass(p).x) < 1e-9;
+            if (on_line && rho1 < v * step) best = std::min(best, h1);
           } else {
             const topomill::Vec3 a = posture_axis(path, p, t1), c = path.centre(p, t1);
             const bool along_y = path.pass(p).dy != 0;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <atomic>
+#include <string>
 #include <vector>
 
 #include "topomill/model.hpp"
@@ -16,6 +17,8 @@ namespace topomill {
 struct PathRequest {
   const SurfaceShape* surface = nullptr;
   double stepover = 0.0;    // ae (mm)
+  double radius = 0.0;      // the ball's R (mm)
+  double offset = 0.0;      // R - ap: the ball centre's distance from the uncut surface (mm)
   double feed_speed = 0.0;  // vf (mm/s)
   // How far before and after the patch a pass must run along its feed (mm): a few revolutions'
   // feed and the depth, so that every node is finished by the teeth that pass it.
@@ -30,14 +33,26 @@ struct PathRequest {
   bool stopped() const { return stop && stop->load(std::memory_order_relaxed); }
 };
 
+// A point of cutter-location data as a path model read it: the ball centre, the unit tool axis,
+// the speed to the next point (ToolPath::Waypoint), and where it was read (for messages: the
+// layout refuses a point off the surface or tilted too far naming its file and line).
+struct ClPoint {
+  ToolPath::Waypoint at;
+  int line = 0;
+};
+
 // One pass as a path model lays it out: the surface point under the ball moves in a straight line
-// in plan from (x0, y0) to (x1, y1) at the feed speed, along X or along Y; `phase` is the spindle
-// angle as it starts (rad).
-// `posture` is the tool's over the pass (ToolPath::Posture; vertical by default).
+// in plan from (x0, y0) to (x1, y1) at the feed speed, along X or along Y; or, when `points` is
+// not empty, the ball centre goes through them (cutter-location data, read from `source`).
+// `phase` is the spindle angle as it starts (rad).
+// `posture` is the tool's over the pass (ToolPath::Posture; vertical by default, `given` with
+// points whose axis is not vertical).
 struct PassLine {
   double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
   double phase = 0.0;
   ToolPath::Posture posture;
+  std::vector<ClPoint> points;
+  std::string source;
 };
 
 class TOPOMILL_API PathModel : public Model {

@@ -17,22 +17,41 @@ namespace topomill {
 class TOPOMILL_API ToolPath {
  public:
   // Every pass feeds along Y (the curvature: the paper's raster, forward or back) or every pass
-  // along X (across it, along the cylinder's axis).
-  enum class FeedAxis { Y, X };
+  // along X (across it, along the cylinder's axis); None when some pass is not a straight line
+  // along one of them at one speed (cutter-location data: radial, spiral, polylines).
+  enum class FeedAxis { Y, X, None };
 
   // The tool's posture over a pass (docs/model.md, "Tool posture"): lead and tilt (rad), the
   // axis fixed in the workpiece frame (3-axis, a tilted head) or set from the surface normal at
   // the contact point (5-axis). Lead = tilt = 0 fixed is the paper's vertical tool.
+  // Cutter-location data (cl_file) gives the axis at each waypoint instead (`given`); it then
+  // `turns` over the pass when the waypoints' axes differ (set by the ToolPath).
   struct Posture {
     double lead = 0.0, tilt = 0.0;
     bool normal = false;
-    bool vertical() const { return !normal && lead == 0 && tilt == 0; }
+    bool given = false, turns = false;
+    bool vertical() const { return !normal && !given && lead == 0 && tilt == 0; }
+    // Whether the tool frame is the same all along the pass.
+    bool fixed() const { return !normal && !turns; }
+  };
+
+  // A point of cutter-location data: the ball centre, the unit tool axis there, and the speed
+  // (mm/s, along the centre's path) to the next. Between two, the centre moves in a straight
+  // line at that speed and the axis turns linearly (normalised).
+  struct Waypoint {
+    Vec3 centre = Vec3::Zero();
+    Vec3 axis = Vec3::UnitZ();
+    double speed = 0.0;
   };
 
   // One pass starts at t = 0 over the surface point (x, y_start) and ends at t_end; that point
   // moves in plan along the unit (dx, dy) at the feed speed vf: (x + vf dx t, y_start + vf dy t)
   // (the paper's feed model: uniform in Y, not along the arc). `phase` is the spindle angle at
   // t = 0 (rad). Passes are along an axis: (0, +-1) or (+-1, 0).
+  // A pass from cutter-location data has `waypoints` instead (two at least): the ball centre
+  // goes through them from t = 0 (t_end is set from them); x and y_start are then its first
+  // centre's x and foot point's y, and (dx, dy) its direction in plan (+-1 or 0) when it is a
+  // straight line along X or Y at one speed, level or not (else zero).
   struct Pass {
     double x = 0.0;
     double y_start = 0.0;
@@ -40,11 +59,12 @@ class TOPOMILL_API ToolPath {
     double phase = 0.0;
     double dx = 0.0, dy = 1.0;
     Posture posture;
+    std::vector<Waypoint> waypoints;
   };
 
   // `offset` is R - ap, the distance of the ball centre from the uncut surface along its normal;
   // `feed_speed` vf in mm/s; `spindle_rate` in rad/s, signed (negative = clockwise from above).
-  // Throws std::invalid_argument for a pass off the axes or passes along both.
+  // Throws std::invalid_argument for a line pass off the axes, or waypoints that do not move.
   ToolPath(std::shared_ptr<const SurfaceShape> surface, double offset, double feed_speed,
            double spindle_rate, std::vector<Pass> passes);
 
@@ -56,10 +76,16 @@ class TOPOMILL_API ToolPath {
   const SurfaceShape& surface() const { return *surface_; }
 
   FeedAxis feed_axis() const { return axis_; }
-  // Surface point under the tool centre at time t (its y; x moves likewise).
+  // Surface point under the tool centre at time t (its y; x moves likewise). For waypoints, the
+  // foot point's y, linear between theirs and held beyond the ends (it sets the inclination the
+  // CATW and the force model read; the centre itself is exact).
   double surface_y(std::size_t p, double t) const;
   // Unit feed direction (tangent to the surface along the pass) at time t.
   Vec3 feed_direction(std::size_t p, double t) const;
+  // The feed speed at time t (mm/s): the waypoints' along the centre's path, or vf.
+  double speed(std::size_t p, double t) const {
+    return passes_[p].waypoints.empty() ? feed_speed_ : passes_[p].waypoints[segment(p, t)].speed;
+  }
   // Whether the tool is vertical on every pass (the paper's): then the tool frame is the
   // workpiece frame, and evaluators and the core skip the rotation (and keep their bits).
   bool vertical() const { return vertical_; }
@@ -136,6 +162,17 @@ class TOPOMILL_API ToolPath {
   // The frame of an axis a (columns x_t, y_t, a).
   static Eigen::Matrix3d frame_of(const Vec3& a);
   Vec3 axis_of(std::size_t p, double t) const;
+  // Per pass from waypoints: each one's time and foot point's y (empty for a line pass).
+  struct Timing {
+    std::vector<double> t, foot_y;
+    std::vector<Vec3> unit;  // per segment, its direction
+  };
+  std::vector<Timing> timing_;
+  // The waypoint segment of pass p holding t (the first or last beyond the ends), and how far
+  // along segment k t is, clamped to [0, 1].
+  std::size_t segment(std::size_t p, double t) const;
+  double fraction(std::size_t p, std::size_t k, double t) const;
+  void set_waypoint_pass(std::size_t p);
   double max_correction_ = 0.0;
 };
 

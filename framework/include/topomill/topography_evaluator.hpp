@@ -56,6 +56,10 @@ class TOPOMILL_API TopographyEvaluator : public Model {
   // and the core refuses any other posture for it rather than let an evaluator written for the
   // vertical tool draw a wrong surface.
   virtual bool follows(const ToolPath::Posture& posture) const { return posture.vertical(); }
+  // Whether evaluate() follows passes that are not all straight lines along one of X or Y at one
+  // speed (ToolPath::feed_axis() None: cutter-location data, radial or spiral passes). By
+  // default not, and the core refuses such a path for it.
+  virtual bool follows_curves() const { return false; }
 
   // The cost of evaluate() for this request (see EvaluationCost); by default unknown (zero).
   virtual EvaluationCost estimate_cost(const EvaluationRequest& request, const Grid& grid) const {

@@ -9,6 +9,7 @@
 #include "describe.hpp"
 #include "interrupt.hpp"
 #include "io/atomic_file.hpp"
+#include "io/cl_csv.hpp"
 #include "io/csv.hpp"
 #include "io/file_info.hpp"
 #include "io/gsf.hpp"
@@ -118,6 +119,9 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
     } else if (format == "sdf") {
       write_sdf(path("height_raw.sdf"), result.raw, raw_info);
       write_sdf(path("height_residual.sdf"), result.residual, residual_info);
+    } else if (format == "cl") {
+      write_cl_csv(path("tool_path.csv"), *result.layout.path,
+                   {"topomill tool path (cutter-location data)", described, now});
     } else if (format == "vts") {
       write_vts(path("height_raw.vts"), result.raw);
       write_vts(path("height_residual.vts"), result.residual);
