@@ -19,9 +19,15 @@ namespace topomill::plugins {
 
 class CentreTable {
  public:
-  // Covers [t_lo, t_hi]; outside it the path is asked directly.
-  CentreTable(const ToolPath& path, std::size_t pass, double t_lo, double t_hi, double tolerance)
-      : path_(&path), pass_(pass), correction_(&path.correction_samples(pass)) {
+  // Covers [t_lo, t_hi]; outside it the path is asked directly. `spindle_axis`: the nominal
+  // centre less the runout (the spindle's axis: smooth, where the centre circles about it), for
+  // the walks' floor.
+  CentreTable(const ToolPath& path, std::size_t pass, double t_lo, double t_hi, double tolerance,
+              bool spindle_axis = false)
+      : path_(&path),
+        pass_(pass),
+        correction_(&path.correction_samples(pass)),
+        spindle_axis_(spindle_axis) {
     index_correction();
     double dt = std::max((t_hi - t_lo) / 16, 1e-9);
     // At most 2^22 knots (200 MB): a smooth path needs far fewer, and a path that is not (NaN
@@ -44,8 +50,7 @@ class CentreTable {
   Vec3 nominal(double t) const {
     const double u = (t - t0_) * inv_dt_;
     const double k = std::floor(u);
-    if (!(k >= 1 && k + 2 < static_cast<double>(knots_.size())))
-      return path_->nominal_centre(pass_, t);
+    if (!(k >= 1 && k + 2 < static_cast<double>(knots_.size()))) return path_centre(t);
     const Cubic& c = cubic_[static_cast<std::size_t>(k)];
     const double s = u - k;
     return c[0] + s * (c[1] + s * (c[2] + s * c[3]));
@@ -66,7 +71,7 @@ class CentreTable {
     const double k = std::floor(u);
     if (!(k >= 1 && k + 2 < static_cast<double>(knots_.size()))) {
       const double h = 1e-6 / inv_dt_;  // beyond the table (never in practice): the path itself
-      return (path_->nominal_centre(pass_, t + h) - path_->nominal_centre(pass_, t - h)) / (2 * h);
+      return (path_centre(t + h) - path_centre(t - h)) / (2 * h);
     }
     const Cubic& c = cubic_[static_cast<std::size_t>(k)];
     const double s = u - k;
@@ -165,8 +170,7 @@ class CentreTable {
     inv_dt_ = 1 / dt;
     const auto n = static_cast<std::size_t>(std::ceil((t_hi - t0_) / dt)) + 3;
     knots_.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-      knots_[i] = path_->nominal_centre(pass_, t0_ + static_cast<double>(i) * dt);
+    for (std::size_t i = 0; i < n; ++i) knots_[i] = path_centre(t0_ + static_cast<double>(i) * dt);
     // On [i, i + 1] the cubic through knots i-1 .. i+2 (Lagrange), in powers of s = u - i: three
     // multiply-adds a probe instead of four weights and four scaled knots.
     cubic_.assign(n, Cubic{});
@@ -184,14 +188,21 @@ class CentreTable {
     double worst = 0;
     for (std::size_t i = 1; i + 2 < knots_.size(); ++i) {
       const double t = t0_ + (static_cast<double>(i) + 0.5) / inv_dt_;
-      worst = std::max(worst, (nominal(t) - path_->nominal_centre(pass_, t)).cwiseAbs().maxCoeff());
+      worst = std::max(worst, (nominal(t) - path_centre(t)).cwiseAbs().maxCoeff());
     }
     return worst;
+  }
+
+  // What the table holds at t: the nominal centre, or the spindle's axis there.
+  Vec3 path_centre(double t) const {
+    return spindle_axis_ ? Vec3(path_->nominal_centre(pass_, t) - path_->runout_offset(pass_, t))
+                         : path_->nominal_centre(pass_, t);
   }
 
   const ToolPath* path_;
   std::size_t pass_;
   const ToolPath::Correction* correction_;
+  bool spindle_axis_;
   double t0_ = 0, inv_dt_ = 1, accel_xy_ = 0;
   std::vector<Vec3> knots_;
   using Cubic = std::array<Vec3, 4>;  // coefficients of s^0 .. s^3

@@ -41,6 +41,8 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
   gap_lag = std::sqrt(1 + k1 * k1);
   for (std::size_t p = 0; p < path->passes(); ++p) {
     centre.emplace_back(*path, p, -pad, path->pass(p).t_end + pad, kTableTolerance);
+    if (runout > 0)
+      spindle_axis.emplace_back(*path, p, -pad, path->pass(p).t_end + pad, kTableTolerance, true);
     // A fixed posture keeps the frame over the pass (the only tilt followed: tooth_passage.cpp).
     const bool tilt = !path->pass(p).posture.vertical();
     tilted.push_back(tilt ? 1 : 0);

@@ -55,7 +55,9 @@ struct PassageSetup {
   double sin_tip, lag_tip;          // below the tip angle the lag is held (ToolGeometry)
   LagShape lag_shape;               // bounds of the lag's turn, for the phase bounds
   std::vector<CentreTable> centre;  // per pass
-  std::vector<double> line;         // per pass: its nominal x (feeding along Y) or y
+  // Per pass with a runout, the spindle's axis (the centre less the runout): the floor's.
+  std::vector<CentreTable> spindle_axis;
+  std::vector<double> line;  // per pass: its nominal x (feeding along Y) or y
   // Per pass, whether the tool is tilted on it, and then its frame's transpose (rows x_t, y_t, a:
   // fixed over the pass), and where its tip is in plan from the centre (-R a's x and y).
   std::vector<char> tilted;
@@ -219,8 +221,7 @@ class PassageGeometry {
   // spindle axis's nominal centre moved by the range's lowest z and as close to the node as the
   // range allows. It has a single minimum, as the ideal envelope.
   double floor_envelope(double t) const {
-    const Vec3 c = s_.runout > 0 ? Vec3(table_.nominal(t) - s_.path->runout_offset(pass_, t))
-                                 : table_.nominal(t);
+    const Vec3 c = s_.runout > 0 ? s_.spindle_axis[pass_].nominal(t) : table_.nominal(t);
     const Vec3 &lo = s_.shift_lo[pass_], &hi = s_.shift_hi[pass_];
     const double dx = x_ - c.x(), dy = y_ - c.y();
     const double ex = dx - std::clamp(dx, lo.x(), hi.x()), ey = dy - std::clamp(dy, lo.y(), hi.y());
