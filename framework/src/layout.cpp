@@ -69,8 +69,7 @@ static void check_posture(const ToolPath& path, Layout& L, const SlotTable& slot
 // A pass of cutter-location data, checked point by point against what the core can follow: each
 // named by its file and line.
 template <class Defect>
-static ToolPath::Pass waypoint_pass(const PassLine& l, const SurfaceShape& surface,
-                                    const Defect& defect) {
+static ToolPath::Pass waypoint_pass(const PassLine& l, const Defect& defect) {
   if (!std::isfinite(l.phase)) throw defect("laid out a pass whose phase is not finite");
   if (l.points.size() < 2) throw defect("laid out a pass of fewer than two points");
   if (l.posture.normal || l.posture.lead != 0 || l.posture.tilt != 0)
@@ -85,17 +84,12 @@ static ToolPath::Pass waypoint_pass(const PassLine& l, const SurfaceShape& surfa
     if (!w.centre.allFinite() || !w.axis.allFinite() || !std::isfinite(w.speed))
       throw defect("read a point that is not finite");
     if (std::abs(w.axis.norm() - 1) > 1e-9) throw defect("read an axis that is not a unit vector");
-    if (!(w.centre.y() > surface.y_min() && w.centre.y() < surface.y_max()))
-      throw refuse("the ball centre's y = " + format_number(w.centre.y()) +
-                   " mm is off the workpiece surface (y from " + format_number(surface.y_min()) +
-                   " to " + format_number(surface.y_max()) + " mm): expected points over it");
     if (k + 1 < l.points.size() && !(w.speed > 0))
       throw refuse("the feed to the next point is " + format_number(w.speed * 60) +
                    " mm/min: expected more than 0");
     if (k + 1 < l.points.size() && w.centre == l.points[k + 1].at.centre)
-      throw refuse("the point repeats the one before the next (" + std::to_string(c.line) +
-                   " and " + std::to_string(l.points[k + 1].line) +
-                   "): expected the tool to move between points (drop one)");
+      throw defect("laid out two equal points in a row (from lines " + std::to_string(c.line) +
+                   " and " + std::to_string(l.points[k + 1].line) + " of " + l.source + ")");
     p.waypoints.push_back(w);
     // Not vertical as soon as one point's axis is not: then the tool frame follows the points.
     p.posture.given = p.posture.given || w.axis != Vec3::UnitZ();
@@ -117,10 +111,15 @@ static void check_waypoints(const ToolPath& path, const std::vector<PassLine>& l
              pass.waypoints[k - 1].speed;
       const double y = path.surface_y(p, t), angle = path.contact_angle(p, t);
       const SourceRef at{lines[p].source, points[k].line, 1};
-      if (!std::isfinite(y) || !std::isfinite(angle))
+      const SurfaceShape& surface = path.surface();
+      // (The foot point is searched on the surface: off it, the search ends at an end.)
+      const double edge = 1e-9 * (1 + std::abs(y));
+      if (!(y > surface.y_min() + edge && y < surface.y_max() - edge) || !std::isfinite(angle))
         throw InputError(at, "path.file",
-                         "the ball centre has no point of the workpiece surface beneath it: "
-                         "expected points over the surface");
+                         "the ball centre at y = " + format_number(pass.waypoints[k].centre.y()) +
+                             " mm has no point of the workpiece surface beneath it (y from " +
+                             format_number(surface.y_min()) + " to " +
+                             format_number(surface.y_max()) + " mm): expected points over it");
       L.lambda_max = std::max(L.lambda_max, angle);
       if (angle + L.kappa < M_PI / 2) continue;
       throw InputError(at, "path.file",
@@ -305,7 +304,7 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   bool near_patch = false;  // some waypoint segment's box comes within R of the patch
   for (const PassLine& l : lines) {
     if (!l.points.empty()) {
-      passes.push_back(waypoint_pass(l, *surface, defect));
+      passes.push_back(waypoint_pass(l, defect));
       for (std::size_t k = 0; k + 1 < l.points.size(); ++k) {
         const Vec3 &a = l.points[k].at.centre, &b = l.points[k + 1].at.centre;
         near_patch =

@@ -63,11 +63,15 @@ void ToolPath::set_waypoint_pass(std::size_t p) {
     tm.unit.push_back(d / len);
     tm.t.push_back(tm.t.back() + len / w[k].speed);
     if (k == 0) first_unit = tm.unit.back();
-    straight = straight && tm.unit.back() == first_unit && w[k].speed == w[0].speed;
+    // Collinear to round-off (a line written as several points): still one line.
+    straight = straight && (tm.unit.back() - first_unit).norm() < 1e-12 &&
+               std::abs(w[k].speed - w[0].speed) <= 1e-12 * w[0].speed;
   }
   for (const Waypoint& q : w) {
+    // The foot point, searched over a span that holds it wherever the centre is (bisection).
     const double s = surface_->arc_coordinate(q.centre.y(), q.centre.z());
-    tm.foot_y.push_back(y_at_arc(*surface_, s, q.centre.y(), offset_ + 1.0));
+    const double span = std::abs(q.centre.y()) + std::abs(q.centre.z()) + offset_ + 1.0;
+    tm.foot_y.push_back(y_at_arc(*surface_, s, q.centre.y(), span));
     pass.posture.turns = pass.posture.turns || q.axis != w[0].axis;
   }
   pass.t_end = tm.t.back();

@@ -76,8 +76,8 @@ void for_each_line(const std::string& text, F&& f) {
   }
 }
 
-// Collects passes: a point joins the current pass; a break closes it (a single point is no
-// pass: there is no move).
+// Collects passes: a point joins the current pass (unless it repeats the last); a break closes
+// it (a single point is no pass: there is no move).
 class Passes {
  public:
   explicit Passes(Data& d) : d_(d) {}
@@ -86,6 +86,10 @@ class Passes {
       throw ReadError(p.line, 1,
                       "more than " + std::to_string(kMaxPoints) +
                           " points: expected fewer (a patch needs the passes near it only)");
+    // A point repeated (CAM output has them, around a feed change) is no move: left out.
+    if (!current_.empty() && current_.back().position == p.position &&
+        current_.back().axis == p.axis)
+      return;
     current_.push_back(p);
   }
   void end() {

@@ -27,7 +27,8 @@ struct Point {
 };
 
 // Passes: runs of feed moves, ended by a rapid move or a marked break (a blank line in CSV;
-// RAPID, END-OF-PATH, FINI or END in APT). Runs of a single point are dropped (no move).
+// RAPID, END-OF-PATH, FINI or END in APT). A point repeating the one before is left out, and a
+// run of a single point dropped (no move).
 struct Data {
   std::vector<std::vector<Point>> passes;
   bool has_axis = false;  // the data gives the tool axis (i, j, k)

@@ -28,6 +28,7 @@ TEST_CASE("CL reader: CSV passes, axes and feeds as written", "[cl]") {
       "X, Y ,z,I,J,K,f\n"
       "0,0,1,0,0,2,600\n"
       "+1.5,-2e-1,1,0,0.6,0.8,1200\r\n"
+      "1.5,-0.2,1,0,0.6,0.8,900\n"  // the point again: no move, left out
       "\n"
       "# a single point is no pass\n"
       "9,9,9,0,0,1,100\n"
@@ -42,7 +43,7 @@ TEST_CASE("CL reader: CSV passes, axes and feeds as written", "[cl]") {
   CHECK(d.passes[0][0].axis == Eigen::Vector3d(0, 0, 1));  // normalised
   CHECK((d.passes[0][1].axis - Eigen::Vector3d(0, 0.6, 0.8)).norm() < 1e-15);
   CHECK(d.passes[0][1].feed == 1200);
-  CHECK(d.passes[0][1].line == 4);
+  CHECK(d.passes[0][1].line == 4);  // the repeat on line 5 is left out
   CHECK((d.passes[1][0].axis - Eigen::Vector3d(1, 0, 1).normalized()).norm() < 1e-15);
   // Without i, j, k the axis is vertical; without f the feed is not given (the scene's).
   const cl::Data v = cl::read_text("x,y,z\n0,0,0\n1,0,0\n", cl::Format::Csv);
