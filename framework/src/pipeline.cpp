@@ -107,7 +107,10 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
     const std::string key = q.normal ? "posture" : q.tilt != 0 ? "tilt" : "lead";
     throw InputError(path.params.has(key) ? path.params.where(key) : path.where, "path." + key,
                      "the evaluator '" + evaluator + "' does not follow the tool's posture " +
-                         (q.normal ? "along the surface normal" : "fixed") + " with lead " +
+                         (q.normal ? "along the surface normal (turning with it over the "
+                                     "curvature)"
+                                   : "fixed") +
+                         " with lead " +
                          format_number(q.lead * 180 / M_PI) + " deg and tilt " +
                          format_number(q.tilt * 180 / M_PI) +
                          " deg: expected a posture it follows (its README says which), or "

@@ -23,7 +23,11 @@ ToolPath::ToolPath(std::shared_ptr<const SurfaceShape> surface, double offset, d
   timing_.resize(passes_.size());
   for (std::size_t p = 0; p < passes_.size(); ++p) {
     if (!passes_[p].waypoints.empty()) set_waypoint_pass(p);
-    const Pass& pass = passes_[p];
+    Pass& pass = passes_[p];
+    // Along the normal the axis turns only where the normal does: over the curvature (a pass
+    // along Y on a curved surface); along X, or on a plane, its frame is fixed.
+    if (pass.posture.normal)
+      pass.posture.turns = pass.dy != 0 && std::isfinite(surface_->curvature_radius());
     const bool y = pass.dx == 0 && std::abs(pass.dy) == 1,
                x = pass.dy == 0 && std::abs(pass.dx) == 1;
     if (!x && !y && pass.waypoints.empty())

@@ -47,10 +47,11 @@ class ToothPassage : public TopographyEvaluator {
               : p.string("walk") == "node" ? Walk::Node
                                            : Walk::Scan) {}
 
-  // A fixed posture, tilted or not (lead and tilt, or the axis cutter-location data give, the
-  // same at every point of a pass): the tool frame is constant over each pass (PassageSetup).
-  // Along the normal, or as the data turn it, the frame turns, which the phase's bounds do not
-  // cover yet. Passes must be straight lines along one of X or Y (follows_curves: no).
+  // A posture whose frame is constant over each pass (PassageSetup): fixed, tilted or not;
+  // along the normal on a plane or on passes along X; the axis cutter-location data give, the
+  // same at every point of a pass. Along the normal over the curvature, or as the data turn it,
+  // the frame turns, which the phase's bounds do not cover yet. Passes must be straight lines
+  // along one of X or Y (follows_curves: no).
   bool follows(const ToolPath::Posture& posture) const override { return posture.fixed(); }
 
   // Memory: the centre tables, about 4 KB a pass (measured: 30 MB for 8 600 passes at a 0.1 um

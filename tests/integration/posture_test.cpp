@@ -256,7 +256,7 @@ TEST_CASE("tooth_passage equals a brute force under a tilted tool", "[posture][f
   // near the vertical tool's axis (near_axis_test.cpp). Tilts that keep the tip out of the cut,
   // and small ones on a plate where the tip cuts and the tool's axis passes over the nodes (the
   // phase turns back there, in the tool's frame now), with the feed along X, zigzag, one tooth,
-  // runout, vibration and deflection.
+  // runout, vibration and deflection; along the normal where its frame is fixed.
   struct Case {
     const char* name;
     std::string workpiece;
@@ -299,7 +299,19 @@ TEST_CASE("tooth_passage equals a brute force under a tilted tool", "[posture][f
            10,
            {"path.lead=8", "path.tilt=-6", "runout.offset=0.002", "tool.radius=5",
             "cutting.depth_of_cut=0.05", "cutting.stepover=0.2"},
-           testing::dynamics_tables()});
+           testing::dynamics_tables()},
+      // Along the normal where it does not turn: passes along the cylinder's axis (the brute
+      // force builds the axis from the normal at each moment), and a plate's.
+      Case{"arc at 30 deg, raster_across, along the normal, lead 12, tilt -7",
+           kArc,
+           30,
+           {"path.plugin=raster_across", "path.posture=normal", "path.lead=12", "path.tilt=-7"},
+           ""},
+      Case{"plate, along the normal, lead 0.5, tilt 0.4, zigzag: the axis over the nodes",
+           kPlate,
+           0,
+           {"path.plugin=zigzag", "path.posture=normal", "path.lead=0.5", "path.tilt=0.4"},
+           ""});
   INFO(c.name);
   const std::string scene = small(c.workpiece, c.lambda, 30, "cw", 0.0025, 0.025) + c.extra;
   const auto m = prepared(scene, c.set);

@@ -24,15 +24,16 @@ class TOPOMILL_API ToolPath {
   // The tool's posture over a pass (docs/model.md, "Tool posture"): lead and tilt (rad), the
   // axis fixed in the workpiece frame (3-axis, a tilted head) or set from the surface normal at
   // the contact point (5-axis). Lead = tilt = 0 fixed is the paper's vertical tool.
-  // Cutter-location data (cl_file) gives the axis at each waypoint instead (`given`); it then
-  // `turns` over the pass when the waypoints' axes differ (set by the ToolPath).
+  // Cutter-location data (cl_file) gives the axis at each waypoint instead (`given`). The
+  // ToolPath sets `turns` where the axis turns over the pass: along the normal on a pass over
+  // the curvature, or where the waypoints' axes differ.
   struct Posture {
     double lead = 0.0, tilt = 0.0;
     bool normal = false;
     bool given = false, turns = false;
     bool vertical() const { return !normal && !given && lead == 0 && tilt == 0; }
     // Whether the tool frame is the same all along the pass.
-    bool fixed() const { return !normal && !turns; }
+    bool fixed() const { return !turns; }
   };
 
   // A point of cutter-location data: the ball centre, the unit tool axis there, and the speed
