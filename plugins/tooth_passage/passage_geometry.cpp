@@ -43,10 +43,12 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     centre.emplace_back(*path, p, -pad, path->pass(p).t_end + pad, kTableTolerance);
     if (runout > 0)
       spindle_axis.emplace_back(*path, p, -pad, path->pass(p).t_end + pad, kTableTolerance, true);
-    // A fixed posture keeps the frame over the pass (the only tilt followed: tooth_passage.cpp).
+    // A fixed posture keeps the frame over the pass; along the normal over the curvature it
+    // turns about X with the inclination (tooth_passage.cpp says which postures are followed).
     const bool tilt = !path->pass(p).posture.vertical();
     tilted.push_back(tilt ? 1 : 0);
     to_tool.push_back(path->tool_frame(p, 0.0).transpose());
+    turn.push_back(turn_bounds(*path, p, pad));
     const Vec3 axis = path->axis(p, 0.0);
     tip_offset.emplace_back(tilt ? -R * axis.x() : 0.0, tilt ? -R * axis.y() : 0.0);
     const Vec3 c0 = path->nominal_centre(p, 0.0);
@@ -78,6 +80,43 @@ std::pair<double, double> PassageSetup::top_speed(std::size_t p, double ta, doub
   const auto [h, v] = nominal_speed[p];
   const auto [ch, cv] = centre[p].correction_speed(ta, tb);
   return {h + ch, v + cv};
+}
+
+PassageSetup::Turn PassageSetup::turn_bounds(const ToolPath& path, std::size_t p, double pad) {
+  Turn q;
+  const ToolPath::Pass& pass = path.pass(p);
+  if (!(pass.posture.normal && pass.posture.turns)) return q;
+  q.on = true;
+  q.lambda0 = path.surface().inclination(path.surface_y(p, 0.0));
+  // theta on 1024 steps over the pass and the look beyond it: its first and second differences,
+  // with a margin (theta is smooth: the inclination of a smooth surface under a uniform feed).
+  constexpr int kSteps = 1024;
+  const double t0 = -pad, dt = (pass.t_end + 2 * pad) / kSteps;
+  double prev = NAN, prev2 = NAN;
+  for (int k = 0; k <= kSteps; ++k) {
+    const double th = path.surface().inclination(path.surface_y(p, t0 + k * dt));
+    if (k >= 1) q.rate = std::max(q.rate, std::abs(th - prev) / dt);
+    if (k >= 2) q.accel = std::max(q.accel, std::abs(th - 2 * prev + prev2) / (dt * dt));
+    prev2 = prev, prev = th;
+  }
+  q.rate = 1.25 * q.rate + 1e-12, q.accel = 1.25 * q.accel + 1e-9;
+  return q;
+}
+
+std::pair<double, double> PassageSetup::turn_at(std::size_t p, double t) const {
+  const SurfaceShape& surface = path->surface();
+  const double y = path->surface_y(p, t), h = 1e-5;  // mm: theta' to about 1e-12 of itself
+  const double rate = (surface.inclination(y + h) - surface.inclination(y - h)) / (2 * h) *
+                      (path->feed_speed() * path->pass(p).dy);
+  return {surface.inclination(y) - turn[p].lambda0, rate};
+}
+
+Eigen::Matrix3d PassageSetup::to_tool_at(std::size_t p, double t) const {
+  if (!turn[p].on) return to_tool[p];
+  const double th = turn_at(p, t).first, c = std::cos(th), s = std::sin(th);
+  Eigen::Matrix3d r;  // R_x(theta): Q(t)^T = Q(0)^T R_x(theta)
+  r << 1, 0, 0, 0, c, -s, 0, s, c;
+  return to_tool[p] * r;
 }
 
 double PassageSetup::slowest(const ToolPath& path) {
@@ -233,13 +272,23 @@ PassageGeometry::Span PassageGeometry::bound_rates(double rho_lo, double rho_hi,
   return {rho_lo, rho_hi, finite(fall), finite(rise), finite(curve), jump};
 }
 
-bool PassageGeometry::lifted(const Vec3& c, const Vec3& v, Vec3& p, Vec3& dp) const {
+bool PassageGeometry::lifted(double t, const Vec3& c, const Vec3& v, Vec3& p, Vec3& dp) const {
   const double qx = x_ - c.x(), qy = y_ - c.y(), r2 = qx * qx + qy * qy;
   if (!(r2 < s_.R2)) return false;
   // P = (q, -h), h = sqrt(R^2 - |q|^2); q' = -v, so P' = (-v, -(q . v) / h).
   const double h = std::sqrt(s_.R2 - r2);
-  p = to_tool_ * Vec3(qx, qy, -h);
-  dp = to_tool_ * Vec3(-v.x(), -v.y(), -(qx * v.x() + qy * v.y()) / h);
+  const Vec3 P(qx, qy, -h), dP(-v.x(), -v.y(), -(qx * v.x() + qy * v.y()) / h);
+  if (!turning_) {
+    p = to_tool_ * P, dp = to_tool_ * dP;
+    return true;
+  }
+  // Turning: p = Q0^T R_x(theta) P, so p' = Q0^T (R_x(theta) P' + theta' R_x'(theta) P).
+  const auto [th, rate] = s_.turn_at(pass_, t);
+  const double cs = std::cos(th), sn = std::sin(th);
+  const Vec3 rP(P.x(), cs * P.y() - sn * P.z(), sn * P.y() + cs * P.z());
+  const Vec3 rdP(dP.x(), cs * dP.y() - sn * dP.z(), sn * dP.y() + cs * dP.z());
+  const Vec3 turned(0.0, -sn * P.y() - cs * P.z(), cs * P.y() - sn * P.z());
+  p = to_tool_ * rP, dp = to_tool_ * Vec3(rdP + rate * turned);
   return true;
 }
 
@@ -288,8 +337,8 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
   if (h < 1e-6 * s_.R) return none;
   const double L = s_.R / h;
   Vec3 pa, pb, da, db;
-  if (!lifted(ca, knot_inside ? Vec3::Zero() : Vec3(sa.v + sa.dv), pa, da) ||
-      !lifted(cb, knot_inside ? Vec3::Zero() : Vec3(sb.v + sa.dv), pb, db))
+  if (!lifted(a, ca, knot_inside ? Vec3::Zero() : Vec3(sa.v + sa.dv), pa, da) ||
+      !lifted(b, cb, knot_inside ? Vec3::Zero() : Vec3(sb.v + sa.dv), pb, db))
     return none;
   // The tool-frame point's chord and the region about it.
   const double ux = pb.x() - pa.x(), uy = pb.y() - pa.y(), len2 = ux * ux + uy * uy;
@@ -301,6 +350,7 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
     // P'' bound over the piece (q'' = -c'', the centre's plan acceleration at most A).
     accel =
         A + (v_plan * v_plan + plan_hi * A) / h + plan_hi * plan_hi * v_plan * v_plan / (h * h * h);
+    accel += turn_accel(L * v_plan);  // a turning frame's (zero when fixed)
     thick = accel * h_t * h_t / 8 + 1e-12;
     // v = -P' in the tool frame (the vertical code's convention: the centre's velocity).
     v = std::max(norm(da.x(), da.y()), norm(db.x(), db.y())) + accel * h_t / 2;
@@ -310,8 +360,10 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
     c_lo = std::min(m_a, m_b) - slack, c_hi = std::max(m_a, m_b) + slack;
   } else {
     const double len = norm(cb.x() - ca.x(), cb.y() - ca.y());
-    thick = s_.R2 * len * len / (8 * h * h * h) + L * grow + 1e-12;
-    v = L * v_plan;
+    // A turning frame moves the whole region by at most |theta'| R h_t about the chord between
+    // the ends' points (each taken in its own frame), and the point by |theta'| R more a second.
+    thick = s_.R2 * len * len / (8 * h * h * h) + L * grow + turn_speed() * h_t + 1e-12;
+    v = L * v_plan + turn_speed();
     c_hi = (ends_hi + thick) * v, c_lo = -c_hi;
     accel = INFINITY;
   }
@@ -352,14 +404,16 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
     // over the half revolution.
     // The lag's slope first over the whole ball (gap_lag: one number), then only as far out as
     // the point gets.
+    // A turning frame adds |theta'| R to the point's speed (turn_speed).
     const Vec3 c = table_(t);
     const double v = s_.plan_line[pass_].speed, plan_hi = norm(x_ - c.x(), y_ - c.y()) + v * half;
     if (plan_hi < 0.95 * s_.R) {
-      const double L = s_.R / std::sqrt(s_.R2 - plan_hi * plan_hi), moved = L * v * half;
+      const double L = s_.R / std::sqrt(s_.R2 - plan_hi * plan_hi);
+      const double speed = L * v + turn_speed(), moved = speed * half;
       if (rho + moved <= 0.95 * s_.R) {
-        if (rho - 1.01 * moved >= 1.01 * s_.gap_lag * L * v / w) return half;
+        if (rho - 1.01 * moved >= 1.01 * s_.gap_lag * speed / w) return half;
         const double k1 = s_.lag_shape.over(0.0, rho + moved).k1;
-        if (rho - 1.01 * moved >= 1.01 * std::sqrt(1 + k1 * k1) * L * v / w) return half;
+        if (rho - 1.01 * moved >= 1.01 * std::sqrt(1 + k1 * k1) * speed / w) return half;
       }
     }
   } else if (const auto [lo, hi] = s_.gap_rho[pass_]; rho <= hi) {
@@ -380,7 +434,7 @@ double PassageGeometry::rate(const Sample& at, const Vec3& dv) const {
   if (tilted_) {
     // The same in the tool frame: q the ball point's offset from the axis, q' its velocity.
     Vec3 p, dp;
-    if (!lifted(at.c, at.v + dv, p, dp)) return NAN;
+    if (!lifted(at.t, at.c, at.v + dv, p, dp)) return NAN;
     const double r2 = p.x() * p.x() + p.y() * p.y();
     if (!(r2 > 0)) return NAN;
     const double du = (p.x() * dp.x() + p.y() * dp.y()) / r2,

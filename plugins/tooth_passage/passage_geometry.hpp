@@ -63,6 +63,21 @@ struct PassageSetup {
   std::vector<char> tilted;
   std::vector<Eigen::Matrix3d> to_tool;
   std::vector<std::pair<double, double>> tip_offset;
+  // Per pass along the normal over the curvature, the frame's turn: the normal turns about X by
+  // the change of the surface's inclination under the centre, theta(t) = lambda(t) - lambda(0),
+  // and with it the axis and the frame (Q(t) = R_x(-theta) Q(0): docs/model.md). Bounds of
+  // |theta'| and |theta''| over the pass (rad/s, rad/s^2), from samples with a margin as the
+  // centre's acceleration (CentreTable::accel_xy). `on` false: the frame is fixed.
+  struct Turn {
+    bool on = false;
+    double lambda0 = 0, rate = 0, accel = 0;
+  };
+  std::vector<Turn> turn;
+  static Turn turn_bounds(const ToolPath& path, std::size_t p, double pad);
+  // theta and theta' at t on a turning pass.
+  std::pair<double, double> turn_at(std::size_t p, double t) const;
+  // The tool frame's transpose at t (rows x_t, y_t, a): to_tool turned by theta on a turning pass.
+  Eigen::Matrix3d to_tool_at(std::size_t p, double t) const;
   // Whether the centre moves about a smooth path, by the correction (at the tooth period) or the
   // runout (a circle of radius `runout` at the spindle's rate): then the envelope wiggles and has
   // dips anywhere, and the walks bound passages by its floor instead (floor_envelope).
@@ -99,7 +114,14 @@ struct PassageSetup {
   // When its tip is: the centre level with (x, y) less the tip's offset (the level time for a
   // vertical tool).
   double tip_time(std::size_t p, double x, double y) const {
-    return level_time(p, x - tip_offset[p].first, y - tip_offset[p].second);
+    double t = level_time(p, x - tip_offset[p].first, y - tip_offset[p].second);
+    // On a turning pass the tip's offset along the feed turns with the frame (across it, R a_x,
+    // it does not: a turn about X): a few steps of the level time at the offset then.
+    for (int k = 0; k < 4 && turn[p].on && std::isfinite(t); ++k) {
+      const Vec3 a = to_tool_at(p, t).row(2).transpose();
+      t = level_time(p, x - tip_offset[p].first, y + R * a.y());
+    }
+    return t;
   }
   // The line in plan the tip follows (across the feed): the pass's own for a vertical tool.
   double tip_line(std::size_t p) const {
@@ -147,6 +169,7 @@ class PassageGeometry {
         rho_hi_(rho_hi),
         phase_(s.path->pass(pass).phase),
         tilted_(s.tilted[pass] != 0),
+        turning_(s.turn[pass].on),
         to_tool_(s.to_tool[pass]) {
     const PassageSetup::PlanLine& l = s.plan_line[pass];
     line_gap_ = std::abs(l.ux * (y - l.y) - l.uy * (x - l.x)) - l.off;
@@ -186,7 +209,7 @@ class PassageGeometry {
   // tool's equator that folds back, which keeps g continuous (the bounds hold for it), and no
   // edge is there (not over).
   Probe probe_tilted(int tooth, double t, const Vec3& c, double dx, double dy, double below) const {
-    const Vec3 p = to_tool_ * Vec3(dx, dy, -below);
+    const Vec3 p = to_tool(t) * Vec3(dx, dy, -below);
     const double rho = std::sqrt(p.x() * p.x() + p.y() * p.y()), sin_a = rho / s_.R;
     const double lag =
         sin_a < s_.sin_tip ? s_.lag_tip : s_.tool->lag_sc(sin_a, std::abs(p.z()) / s_.R);
@@ -241,7 +264,7 @@ class PassageGeometry {
     const Vec3 c = table_(t);
     const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
     if (!(r2 < s_.R2)) return INFINITY;
-    const Vec3 p = to_tool_ * Vec3(dx, dy, -std::sqrt(s_.R2 - r2));
+    const Vec3 p = to_tool(t) * Vec3(dx, dy, -std::sqrt(s_.R2 - r2));
     return std::sqrt(p.x() * p.x() + p.y() * p.y());
   }
 
@@ -327,8 +350,19 @@ class PassageGeometry {
   // A tilted tool's: the ball point over the node in the tool frame, lifted from the plan.
   Span span_tilted(const Sample& a, const Sample& b) const;
   // The ball point over the node relative to the centre in the tool frame, and its velocity, for
-  // the centre at c moving at v (plan offset q = node - c): false off the ball.
-  bool lifted(const Vec3& c, const Vec3& v, Vec3& p, Vec3& dp) const;
+  // the centre at c moving at v (plan offset q = node - c) at time t (the frame's, which may
+  // turn): false off the ball.
+  bool lifted(double t, const Vec3& c, const Vec3& v, Vec3& p, Vec3& dp) const;
+  // The tool frame's transpose at t.
+  Eigen::Matrix3d to_tool(double t) const { return turning_ ? s_.to_tool_at(pass_, t) : to_tool_; }
+  // What the frame's turn adds to the ball point's speed in the tool frame (at most |theta'| R:
+  // a turn of a point at R from the centre) and to its acceleration, given the point's own speed
+  // v there (2 |theta'| v + (|theta''| + theta'^2) R); zero on a fixed frame.
+  double turn_speed() const { return turning_ ? s_.turn[pass_].rate * s_.R : 0.0; }
+  double turn_accel(double v) const {
+    const PassageSetup::Turn& q = s_.turn[pass_];
+    return turning_ ? 2 * q.rate * v + (q.accel + q.rate * q.rate) * s_.R : 0.0;
+  }
   // G'(t), the phase's rate (rad/s): the same for every tooth. `dv` is the correction's slope on
   // the side of t asked for (sample's is the right: a piece ending at a knot asks for the left).
   double rate(const Sample& at, const Vec3& dv) const;
@@ -414,8 +448,8 @@ class PassageGeometry {
   const CentreTable& table_;
   std::size_t pass_;
   double x_, y_, rho_lo_, rho_hi_, phase_;
-  bool tilted_;
-  Eigen::Matrix3d to_tool_;  // the tool frame's transpose when tilted
+  bool tilted_, turning_;
+  Eigen::Matrix3d to_tool_;  // the tool frame's transpose when tilted (at t = 0 when turning)
   double line_gap_;  // at most the axis's least distance from the node along the pass (PlanLine)
 };
 

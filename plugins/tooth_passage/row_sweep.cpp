@@ -447,14 +447,17 @@ double RowSweep::fall_rate(std::size_t p, double t, double rho, double plan, dou
   if (plan_hi >= 0.95 * s_.R) return INFINITY;
   const double sp_hi = plan_hi / s_.R, cp_hi = std::sqrt(1 - sp_hi * sp_hi);
   const double L = s_.tilted[p] ? 1 / cp_hi : 1.0;
-  const double rho_lo = rho - L * moved, rho_hi = rho + L * moved;
+  // A turning frame moves the point by up to |theta'| R more a second (span_tilted).
+  const double turned = s_.turn[p].on ? s_.turn[p].rate * s_.R : 0.0;
+  const double rho_lo = rho - (L * moved + turned * w), rho_hi = rho + L * moved + turned * w;
   if (rho_lo <= 0 || rho_hi >= 0.95 * s_.R) return INFINITY;
   const double s_lo = rho_lo / s_.R, s_hi = rho_hi / s_.R;
   const double c_lo = std::sqrt(1 - s_lo * s_lo), c_hi = std::sqrt(1 - s_hi * s_hi);
   const double lag_slope = std::max(std::abs(s_.tool->lag_slope_sc(s_lo, c_lo)),
                                     std::abs(s_.tool->lag_slope_sc(s_hi, c_hi)));
   const double k = lag_slope / (s_.R * c_hi);
-  const double sweep = std::abs(s_.omega) - L * vxy * std::sqrt(1 / (rho_lo * rho_lo) + k * k);
+  const double sweep =
+      std::abs(s_.omega) - (L * vxy + turned) * std::sqrt(1 / (rho_lo * rho_lo) + k * k);
   if (sweep <= 0.2 * std::abs(s_.omega)) return INFINITY;
   const double bx = L * (1 / rho_lo + k) / sweep;
   reach = std::min(kReach, w / bx);

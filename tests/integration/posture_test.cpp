@@ -311,6 +311,26 @@ TEST_CASE("tooth_passage equals a brute force under a tilted tool", "[posture][f
            kPlate,
            0,
            {"path.plugin=zigzag", "path.posture=normal", "path.lead=0.5", "path.tilt=0.4"},
+           ""},
+      // Along the normal over the curvature: the frame turns about X with the inclination.
+      Case{"arc at 30 deg, along the normal, lead 10, tilt 5: the frame turns",
+           kArc,
+           30,
+           {"path.posture=normal", "path.lead=10", "path.tilt=5"},
+           ""},
+      Case{"arc at 10 deg, zigzag along the normal, lead -12, tilt -8, runout 2 um, vibration "
+           "and deflection: the frame turns",
+           kArc,
+           10,
+           {"path.plugin=zigzag", "path.posture=normal", "path.lead=-12", "path.tilt=-8",
+            "runout.offset=0.002", "tool.radius=5", "cutting.depth_of_cut=0.05",
+            "cutting.stepover=0.2"},
+           testing::dynamics_tables()},
+      // Lead 0.3 along the normal at 30 deg: the tip in the cut, the axis over the nodes.
+      Case{"arc at 30 deg, along the normal, lead 0.3, tilt 0.2: the axis over the nodes, turning",
+           kArc,
+           30,
+           {"path.posture=normal", "path.lead=0.3", "path.tilt=0.2"},
            ""});
   INFO(c.name);
   const std::string scene = small(c.workpiece, c.lambda, 30, "cw", 0.0025, 0.025) + c.extra;
