@@ -98,9 +98,10 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
     if (q.given)
       throw InputError(path.params.has("file") ? path.params.where("file") : path.where,
                        "path.file",
-                       "the evaluator '" + evaluator +
-                           "' does not follow a tool axis that turns along a pass (pass " +
-                           std::to_string(p + 1) +
+                       "the evaluator '" + evaluator + "' does not follow " +
+                           (q.turns ? "a tool axis that turns along a pass"
+                                    : "the tilted tool axis the data give") +
+                           " (pass " + std::to_string(p + 1) +
                            " of the cutter-location data): expected a fixed axis over each pass "
                            "(its README says which), or evaluator.plugin = \"zmap\", which "
                            "follows any");
@@ -110,8 +111,7 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
                          (q.normal ? "along the surface normal (turning with it over the "
                                      "curvature)"
                                    : "fixed") +
-                         " with lead " +
-                         format_number(q.lead * 180 / M_PI) + " deg and tilt " +
+                         " with lead " + format_number(q.lead * 180 / M_PI) + " deg and tilt " +
                          format_number(q.tilt * 180 / M_PI) +
                          " deg: expected a posture it follows (its README says which), or "
                          "evaluator.plugin = \"zmap\", which follows any");
