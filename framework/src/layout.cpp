@@ -104,11 +104,8 @@ static void check_waypoints(const ToolPath& path, const std::vector<PassLine>& l
     const ToolPath::Pass& pass = path.pass(p);
     if (pass.waypoints.empty()) continue;
     const std::vector<ClPoint>& points = lines[p].points;
-    double t = 0;
     for (std::size_t k = 0; k < points.size(); ++k) {
-      if (k > 0)
-        t += (pass.waypoints[k].centre - pass.waypoints[k - 1].centre).norm() /
-             pass.waypoints[k - 1].speed;
+      const double t = path.waypoint_time(p, k);
       const double y = path.surface_y(p, t), angle = path.contact_angle(p, t);
       const SourceRef at{lines[p].source, points[k].line, 1};
       const SurfaceShape& surface = path.surface();

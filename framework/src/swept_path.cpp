@@ -7,12 +7,10 @@ namespace topomill {
 SweptPath::SweptPath(const ToolPath& path) {
   for (std::size_t p = 0; p < path.passes(); ++p) {
     const auto& w = path.pass(p).waypoints;
-    double t = 0;
     for (std::size_t k = 0; k + 1 < w.size(); ++k) {
       if (k % kChunk == 0)
         chunks_.push_back({segments_.size(), segments_.size(), w[k].centre, w[k].centre});
-      t += (w[k + 1].centre - w[k].centre).norm() / w[k].speed;
-      segments_.push_back({w[k].centre, w[k + 1].centre, p, t});
+      segments_.push_back({w[k].centre, w[k + 1].centre, p, path.waypoint_time(p, k + 1)});
       Chunk& c = chunks_.back();
       c.last = segments_.size();
       c.lo = c.lo.cwiseMin(w[k + 1].centre), c.hi = c.hi.cwiseMax(w[k + 1].centre);

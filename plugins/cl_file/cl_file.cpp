@@ -3,7 +3,6 @@
 // damaged one is refused (with its line and column) before anything runs.
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
 #include "../common/parallel_passes.hpp"
 #include "cl_reader.hpp"
@@ -41,9 +40,9 @@ class ClFile : public PathModel {
     path_ = file.lexically_normal().string();
     const std::string format = p.string("format");
     try {
-      cl::Format f = format == "csv" ? cl::Format::Csv : cl::Format::Apt;
-      if (format == "auto") f = cl::guess_format(path_, head(path_));
-      data_ = cl::read_file(path_, f);
+      data_ = cl::read_file(path_, format == "csv"   ? cl::Format::Csv
+                                   : format == "apt" ? cl::Format::Apt
+                                                     : cl::Format::Auto);
     } catch (const cl::ReadError& e) {
       throw InputError(SourceRef{path_, e.line, e.column}, "path.file", e.what());
     } catch (const std::runtime_error& e) {
@@ -78,15 +77,6 @@ class ClFile : public PathModel {
   }
 
  private:
-  // The first bytes, for the format guess.
-  static std::string head(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::string s(256, '\0');
-    in.read(s.data(), static_cast<std::streamsize>(s.size()));
-    s.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
-    return s;
-  }
-
   PassPhase phase_;
   bool tip_;
   std::string path_;

@@ -282,6 +282,7 @@ Data read_apt(const std::string& text) {
 }  // namespace
 
 Data read_text(const std::string& text, Format format) {
+  if (format == Format::Auto) format = guess_format("", text);
   return format == Format::Csv ? read_csv(text) : read_apt(text);
 }
 
@@ -312,7 +313,7 @@ Data read_file(const std::string& path, Format format) {
                                "it only)");
   }
   if (in.bad()) throw std::runtime_error("it could not be read");
-  return read_text(text, format);
+  return read_text(text, format == Format::Auto ? guess_format(path, text) : format);
 }
 
 }  // namespace topomill::plugins::cl

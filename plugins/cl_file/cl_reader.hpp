@@ -34,13 +34,15 @@ struct Data {
   bool has_axis = false;  // the data gives the tool axis (i, j, k)
 };
 
-enum class Format { Csv, Apt };
+// Auto: from the file's name, else its first statement (guess_format).
+enum class Format { Csv, Apt, Auto };
 
 // The limits a file is held to: bytes read and points kept.
 constexpr std::size_t kMaxBytes = std::size_t{256} << 20;
 constexpr std::size_t kMaxPoints = std::size_t{1} << 24;
 
 // Throws ReadError for malformed content, std::runtime_error("...") when the file cannot be read.
+// Auto guesses from the name (read_file) and the first statement; the file is read once.
 Data read_text(const std::string& text, Format format);
 Data read_file(const std::string& path, Format format);
 

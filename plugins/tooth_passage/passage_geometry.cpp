@@ -103,17 +103,20 @@ PassageSetup::Turn PassageSetup::turn_bounds(const ToolPath& path, std::size_t p
   return q;
 }
 
-std::pair<double, double> PassageSetup::turn_at(std::size_t p, double t) const {
+double PassageSetup::turn_angle(std::size_t p, double t) const {
+  return path->surface().inclination(path->surface_y(p, t)) - turn[p].lambda0;
+}
+
+double PassageSetup::turn_rate(std::size_t p, double t) const {
   const SurfaceShape& surface = path->surface();
   const double y = path->surface_y(p, t), h = 1e-5;  // mm: theta' to about 1e-12 of itself
-  const double rate = (surface.inclination(y + h) - surface.inclination(y - h)) / (2 * h) *
-                      (path->feed_speed() * path->pass(p).dy);
-  return {surface.inclination(y) - turn[p].lambda0, rate};
+  return (surface.inclination(y + h) - surface.inclination(y - h)) / (2 * h) *
+         (path->feed_speed() * path->pass(p).dy);
 }
 
 Eigen::Matrix3d PassageSetup::to_tool_at(std::size_t p, double t) const {
   if (!turn[p].on) return to_tool[p];
-  const double th = turn_at(p, t).first, c = std::cos(th), s = std::sin(th);
+  const double th = turn_angle(p, t), c = std::cos(th), s = std::sin(th);
   Eigen::Matrix3d r;  // R_x(theta): Q(t)^T = Q(0)^T R_x(theta)
   r << 1, 0, 0, 0, c, -s, 0, s, c;
   return to_tool[p] * r;
@@ -283,7 +286,7 @@ bool PassageGeometry::lifted(double t, const Vec3& c, const Vec3& v, Vec3& p, Ve
     return true;
   }
   // Turning: p = Q0^T R_x(theta) P, so p' = Q0^T (R_x(theta) P' + theta' R_x'(theta) P).
-  const auto [th, rate] = s_.turn_at(pass_, t);
+  const double th = s_.turn_angle(pass_, t), rate = s_.turn_rate(pass_, t);
   const double cs = std::cos(th), sn = std::sin(th);
   const Vec3 rP(P.x(), cs * P.y() - sn * P.z(), sn * P.y() + cs * P.z());
   const Vec3 rdP(dP.x(), cs * dP.y() - sn * dP.z(), sn * dP.y() + cs * dP.z());

@@ -74,8 +74,9 @@ struct PassageSetup {
   };
   std::vector<Turn> turn;
   static Turn turn_bounds(const ToolPath& path, std::size_t p, double pad);
-  // theta and theta' at t on a turning pass.
-  std::pair<double, double> turn_at(std::size_t p, double t) const;
+  // theta at t on a turning pass, and theta' (the probes need the first only).
+  double turn_angle(std::size_t p, double t) const;
+  double turn_rate(std::size_t p, double t) const;
   // The tool frame's transpose at t (rows x_t, y_t, a): to_tool turned by theta on a turning pass.
   Eigen::Matrix3d to_tool_at(std::size_t p, double t) const;
   // Whether the centre moves about a smooth path, by the correction (at the tooth period) or the

@@ -83,6 +83,8 @@ class TOPOMILL_API ToolPath {
   double surface_y(std::size_t p, double t) const;
   // Unit feed direction (tangent to the surface along the pass) at time t.
   Vec3 feed_direction(std::size_t p, double t) const;
+  // The time the centre reaches waypoint k of pass p (its length over its speed, summed).
+  double waypoint_time(std::size_t p, std::size_t k) const { return timing_[p].t[k]; }
   // The feed speed at time t (mm/s): the waypoints' along the centre's path, or vf.
   double speed(std::size_t p, double t) const {
     return passes_[p].waypoints.empty() ? feed_speed_ : passes_[p].waypoints[segment(p, t)].speed;

@@ -28,13 +28,8 @@ std::vector<Point> pass_points(const ToolPath& path, std::size_t p, double sag) 
   const ToolPath::Pass& pass = path.pass(p);
   std::vector<Point> out;
   if (!pass.waypoints.empty()) {
-    double t = 0;
-    for (std::size_t k = 0; k < pass.waypoints.size(); ++k) {
-      const auto& w = pass.waypoints[k];
-      if (k > 0)
-        t += (w.centre - pass.waypoints[k - 1].centre).norm() / pass.waypoints[k - 1].speed;
-      out.push_back({t, w.centre, w.axis});
-    }
+    for (std::size_t k = 0; k < pass.waypoints.size(); ++k)
+      out.push_back({path.waypoint_time(p, k), pass.waypoints[k].centre, pass.waypoints[k].axis});
     return out;
   }
   const double r = std::abs(path.surface().curvature_radius());
