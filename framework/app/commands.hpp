@@ -14,6 +14,7 @@ int cmd_check(const Args& args);
 int cmd_plugins(const Args& args);
 int cmd_describe(const Args& args);
 int cmd_measure(const Args& args);
+int cmd_compare(const Args& args);
 int cmd_sweep(const Args& args);
 int cmd_ablate(const Args& args);
 int cmd_study(const Args& args);

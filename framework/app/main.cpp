@@ -26,6 +26,8 @@ const Command kCommands[] = {
     {"plugins", topomill::cli::cmd_plugins, "list the models available, per slot"},
     {"describe", topomill::cli::cmd_describe, "show a model's parameters"},
     {"measure", topomill::cli::cmd_measure, "ISO 25178 parameters of a height-map file"},
+    {"compare", topomill::cli::cmd_compare,
+     "a simulated surface beside a measured one: registered, differenced, parameters"},
     {"ablate", topomill::cli::cmd_ablate, "each effect off in turn, and swapped models"},
     {"sweep", topomill::cli::cmd_sweep, "the cross product of varied scene keys"},
     {"study", topomill::cli::cmd_study, "accuracy against time, per evaluator and resolution"},

@@ -1,4 +1,5 @@
 // Schemas of the core's own scene tables. Plugin tables carry their model's schema instead.
+#include "metrology/parameters.hpp"
 #include "scene.hpp"
 
 namespace topomill {
@@ -87,6 +88,46 @@ Schema analysis_schema() {
                "Form removal before the parameters: nominal = distance along the surface normal "
                "from the nominal cut surface (the paper's unrolling), plane = least-squares plane")
       .with_default(std::string("nominal"));
+  s.add_string_array("parameters", parameter_words(),
+                     "ISO 25178-2 parameters to report: default (height and hybrid), all, a family "
+                     "(height, spatial, hybrid, functional, volume) or single names; "
+                     "docs/metrology.md defines each")
+      .with_default(std::vector<std::string>{"default"});
+  // ISO 25178-3's defaults (s, p, q) and common ones for the rest; each settable.
+  s.add_number("acf_threshold", "s: the autocorrelation's decay value for Sal and Str")
+      .above(0)
+      .below(1)
+      .with_default(0.2);
+  s.add_number("volume_p", "p: Vmp = Vm(p), Vvc = Vv(p) - Vv(q); Vm and Vv at p")
+      .with_unit("%")
+      .above(0)
+      .below(100)
+      .with_default(10.0);
+  s.add_number("volume_q", "q: Vmc = Vm(q) - Vm(p), Vvv = Vv(q); above volume_p")
+      .with_unit("%")
+      .above(0)
+      .below(100)
+      .with_default(80.0);
+  s.add_number("sxp_p", "p of Sxp = Smc(p) - Smc(q)")
+      .with_unit("%")
+      .above(0)
+      .below(100)
+      .with_default(2.5);
+  s.add_number("sxp_q", "q of Sxp; above sxp_p")
+      .with_unit("%")
+      .above(0)
+      .below(100)
+      .with_default(50.0);
+  s.add_number("smr_c", "c: the height above the mean plane at which Smr(c) is taken")
+      .with_unit("um")
+      .at_least(-1e6)
+      .at_most(1e6)
+      .with_default(0.0);
+  s.add_number("smc_mr", "mr: the material ratio at which Smc(mr) is taken")
+      .with_unit("%")
+      .at_least(0)
+      .at_most(100)
+      .with_default(10.0);
   return s;
 }
 

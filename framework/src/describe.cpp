@@ -139,4 +139,13 @@ std::string to_json(const toml::array& array) {
   return json_of(array).dump(4) + "\n";
 }
 
+toml::table grid_table(const Grid& g) {
+  return toml::table{{"nx", static_cast<std::int64_t>(g.nx)},
+                     {"ny", static_cast<std::int64_t>(g.ny)},
+                     {"dx_mm", g.dx},
+                     {"dy_mm", g.dy},
+                     {"x0_mm", g.x0},
+                     {"y0_mm", g.y0}};
+}
+
 }  // namespace topomill

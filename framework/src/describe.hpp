@@ -5,6 +5,8 @@
 #include <toml++/toml.h>
 #include <string>
 
+#include "topomill/types.hpp"
+
 #include "plugin_catalog.hpp"
 #include "topomill/params.hpp"
 
@@ -17,6 +19,9 @@ std::string schema_text(const Schema& schema, const std::string& indent = "  ");
 std::string schema_markdown(const Schema& schema);
 
 std::string to_json(const toml::table& table);
+// {"nx", "ny", "dx_mm", "dy_mm", "x0_mm", "y0_mm"}: a grid as summary.json and compare.json give
+// it.
+toml::table grid_table(const Grid& g);
 std::string to_toml_text(const toml::table& table);
 std::string to_json(const toml::array& array);
 

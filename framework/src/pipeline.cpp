@@ -83,6 +83,7 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
     if (scene.enabled(name))
       out.deformations.emplace_back(name, make<Deformation>(scene, catalog, name));
   out.layout = make_layout(scene, *out.tool, out.surface, *out.path);
+  out.parameter_settings = parameter_settings(scene.table("analysis"));
   const SlotTable& path_slot = scene.slot("path");
   const std::string evaluator = scene.slot("evaluator").plugin;
   if (out.layout.path->feed_axis() == ToolPath::FeedAxis::None && !out.evaluator->follows_curves())
@@ -373,7 +374,14 @@ RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog,
   });
   require_finite(result.residual, "the residual height map");
 
-  result.roughness = clock.run("parameters", [&] { return roughness(result.residual); });
+  result.roughness = clock.run("parameters", [&] {
+    Surface residual;
+    residual.map = result.residual;
+    result.parameters = compute_parameters(
+        residual, select_parameters(scene.table("analysis").strings("parameters")),
+        m.parameter_settings);
+    return roughness(result.residual);
+  });
   return result;
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "layout.hpp"
+#include "metrology/parameters.hpp"
 #include "plugin_catalog.hpp"
 #include "roughness.hpp"
 #include "scene.hpp"
@@ -35,6 +36,7 @@ struct RunResult {
   HeightMap raw;        // Z-map heights (mm) over the XY grid
   HeightMap residual;   // after form removal (mm), on the unrolled (x, s) grid or the XY grid
   Roughness roughness;  // of `residual`, in mm (convert at the output)
+  ParameterValues parameters;  // of `residual`: those [analysis] parameters selects, as reported
   std::vector<StageTime> stages;
   WorkCounts work;
   std::vector<std::string> effects;  // enabled effect tables that ran
@@ -56,6 +58,7 @@ struct Prepared {
   std::shared_ptr<DynamicsModel> dynamics;
   std::vector<std::pair<std::string, std::shared_ptr<Deformation>>> deformations;
   Layout layout;
+  ParameterSettings parameter_settings;  // [analysis], checked
 };
 
 // What the evaluator is asked for a prepared scene: tool, path, contact range, threads.

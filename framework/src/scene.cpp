@@ -211,9 +211,16 @@ Value convert(const toml::node& node, const ParamSpec& spec, const std::string& 
         bool ok = e.is_string() && (spec.choices.empty() ||
                                     std::find(spec.choices.begin(), spec.choices.end(),
                                               std::string(*e.as_string())) != spec.choices.end());
-        if (!ok)
+        if (!ok) {
+          // A misspelt choice gets "did you mean" (e.g. "Vmcc" for Vmc) before the list.
+          std::string hint;
+          if (e.is_string())
+            if (const std::string near = closest_name(std::string(*e.as_string()), spec.choices);
+                !near.empty())
+              hint = " (did you mean '" + near + "'?)";
           throw InputError(loc.at(path, e.source()), path + "[" + std::to_string(i) + "]",
-                           "expected " + spec.expectation() + ", got " + node_kind(e));
+                           "expected " + spec.expectation() + ", got " + node_kind(e) + hint);
+        }
         const std::string v(*e.as_string());
         // A choice is a set member: twice would mean one output written twice (issue 18).
         if (!spec.choices.empty() && std::find(out.begin(), out.end(), v) != out.end())

@@ -28,15 +28,6 @@ namespace topomill {
 
 namespace {
 
-toml::table grid_table(const Grid& g) {
-  return toml::table{{"nx", static_cast<std::int64_t>(g.nx)},
-                     {"ny", static_cast<std::int64_t>(g.ny)},
-                     {"dx_mm", g.dx},
-                     {"dy_mm", g.dy},
-                     {"x0_mm", g.x0},
-                     {"y0_mm", g.y0}};
-}
-
 // A scene value as a reader writes it: 0.3 (the shortest exact text, not 0.29999999999999999),
 // cw (no quotes), [0.86, 0.86].
 std::string value_text(const toml::node& v) {
@@ -195,7 +186,7 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
                            {"residual", grid_table(result.residual.grid)},
                            {"form", scene.table("analysis").string("form")},
                            {"passes", static_cast<std::int64_t>(result.layout.path->passes())}}},
-      {"roughness", roughness_table(result.roughness)},
+      {"roughness", roughness_table(result.parameters)},
       {"effects_detail", toml::table{{"time_step_s", result.dynamics_step},
                                      {"peak_force_N", result.peak_force},
                                      {"peak_correction_mm", result.peak_correction}}},
@@ -216,7 +207,7 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
      << " um, dy " << raw.dy * 1e3 << " um; height_residual " << res.nx << " x " << res.ny
      << " nodes " << (unrolled ? "along the surface" : "in plan") << ", " << res.dx * 1e3 << " x "
      << res.dy * 1e3 << " um\n";
-  os << roughness_text(result.roughness, "   ", 4) << "\n";
+  os << roughness_text(result.parameters, "   ", 4) << "\n";
   os << "time     ";
   for (const auto& s : result.stages) os << s.name << " " << s.seconds << " s  ";
   os << "\noutputs  " << out_dir << "/summary.json";

@@ -236,13 +236,22 @@ Surface read_x3p(const std::string& path) {
   return s;
 }
 
-void write_x3p(const std::string& path, const HeightMap& map, const FileInfo& info) {
+void write_x3p(const std::string& path, const HeightMap& map, const FileInfo& info,
+               const std::vector<std::uint8_t>& valid) {
   const Grid& g = map.grid;
-  std::string data(g.size() * 8, '\0');
+  const bool masked = !valid.empty();
+  std::string data(g.size() * 8, '\0'), bits;
+  if (masked) bits.assign((g.size() + 7) / 8, '\0');
   for (std::size_t i = 0; i < g.size(); ++i) {
-    const double v = map.z[i] * 1e-3;
+    const bool ok = !masked || valid[i] != 0;
+    const double v = ok ? map.z[i] * 1e-3 : 0.0;
     std::memcpy(data.data() + i * 8, &v, 8);
+    if (masked && ok) bits[i / 8] = static_cast<char>(bits[i / 8] | (1u << (i % 8)));
   }
+  std::string valid_link;
+  if (masked)
+    valid_link = "<ValidPointsLink>bindata/valid.bin</ValidPointsLink><MD5ChecksumValidPoints>" +
+                 md5_hex(bits.data(), bits.size()) + "</MD5ChecksumValidPoints>";
   // A simulation has no calibration: its date is the run's, as for the measurement's Date.
   const std::string date = iso8601_utc(created_time(info));
   std::string comment = info.title.empty() ? "simulated surface" : info.title;
@@ -266,7 +275,7 @@ void write_x3p(const std::string& path, const HeightMap& map, const FileInfo& in
       << "<Record3><MatrixDimension><SizeX>" << g.nx << "</SizeX><SizeY>" << g.ny
       << "</SizeY><SizeZ>1</SizeZ></MatrixDimension><DataLink><PointDataLink>bindata/data.bin"
       << "</PointDataLink><MD5ChecksumPointData>" << md5_hex(data.data(), data.size())
-      << "</MD5ChecksumPointData></DataLink></Record3>\n"
+      << "</MD5ChecksumPointData>" << valid_link << "</DataLink></Record3>\n"
       << "<Record4><ChecksumFile>md5checksum.hex</ChecksumFile></Record4>\n</p:ISO5436_2>\n";
   const std::string main_xml = xml.str();
   const std::string checksum = md5_hex(main_xml.data(), main_xml.size()) + " *main.xml\n";
@@ -285,6 +294,7 @@ void write_x3p(const std::string& path, const HeightMap& map, const FileInfo& in
     };
     add("main.xml", main_xml);
     add("bindata/data.bin", data);
+    if (masked) add("bindata/valid.bin", bits);
     add("md5checksum.hex", checksum);
     if (zip_close(z) != 0) {
       zip_discard(z);

@@ -1,0 +1,113 @@
+#include "compare.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "metrology/resample.hpp"
+#include "metrology/spectrum.hpp"
+#include "topomill/error.hpp"
+
+namespace topomill {
+
+namespace {
+double wrap_deg(double d) {
+  d = std::fmod(d, 180.0);
+  return d < 0 ? d + 180 : d;
+}
+
+// The surface on a grid of spacing (dx, dy) over its own extent (itself when it has it).
+Surface to_spacing(const Surface& s, double dx, double dy) {
+  const Grid& g = s.map.grid;
+  if (g.dx == dx && g.dy == dy) return s;
+  Grid c;
+  c.x0 = g.x0, c.y0 = g.y0, c.dx = dx, c.dy = dy;
+  // The nodes that fit within the map (a thousandth of a node's slack for rounding).
+  c.nx = static_cast<std::size_t>(static_cast<double>(g.nx - 1) * g.dx / dx + 1e-3) + 1;
+  c.ny = static_cast<std::size_t>(static_cast<double>(g.ny - 1) * g.dy / dy + 1e-3) + 1;
+  return resample(s, c);
+}
+
+double sq(const Surface& s) {
+  double sum = 0, sum2 = 0, n = 0;
+  for (std::size_t k = 0; k < s.map.z.size(); ++k)
+    if (s.is_valid(k)) sum += s.map.z[k], sum2 += s.map.z[k] * s.map.z[k], n += 1;
+  if (n == 0) return 0;
+  const double m = sum / n;
+  return std::sqrt(std::max(0.0, sum2 / n - m * m));
+}
+}  // namespace
+
+Lay lay_of(const Surface& s) {
+  Lay l;
+  const double theta = texture_direction(PowerSpectrum(s));
+  l.std_deg = theta * 180 / M_PI;
+  l.lay_deg = wrap_deg(l.std_deg + 90);
+  l.across_mm = dominant_period(s, theta);
+  l.along_mm = dominant_period(s, theta + M_PI / 2);
+  l.x_mm = dominant_period(s, 0.0);
+  l.y_mm = dominant_period(s, M_PI / 2);
+  return l;
+}
+
+Comparison compare_surfaces(const Surface& sim_in, const Surface& meas_in,
+                            const CompareSettings& settings) {
+  const Grid &gs = sim_in.map.grid, &gm = meas_in.map.grid;
+  const SourceRef where{meas_in.source};
+  const double ratio = std::max({gs.dx / gm.dx, gm.dx / gs.dx, gs.dy / gm.dy, gm.dy / gs.dy});
+  if (ratio > 8)
+    throw InputError(
+        where, "",
+        "the node spacings differ " + format_number(ratio) +
+            "-fold (more than 8): expected maps of similar resolution (smooth the "
+            "finer one with --filter-s at the coarser spacing, or resample it, first)");
+  Comparison c;
+  c.dx = std::max(gs.dx, gm.dx), c.dy = std::max(gs.dy, gm.dy);
+  c.interpolation = "Keys cubic convolution (a = -1/2)";
+  c.sim = to_spacing(sim_in, c.dx, c.dy);
+  c.meas = to_spacing(meas_in, c.dx, c.dy);
+  const double sq_s = sq(c.sim), sq_m = sq(c.meas);
+  if (!(sq_s > 0 && sq_m > 0))
+    throw InputError(sq_s > 0 ? where : SourceRef{sim_in.source}, "",
+                     "the map is flat after processing: expected a surface with relief");
+  if (sq_s / sq_m > 100 || sq_m / sq_s > 100)
+    throw InputError(where, "",
+                     "Sq is " + format_number(sq_m * 1e3) + " um here and " +
+                         format_number(sq_s * 1e3) + " um in " + sim_in.source +
+                         ": heights more than 100 times apart, units that do not match (a file "
+                         "in um read as mm?); expected heights on one scale");
+
+  c.sim_lay = lay_of(c.sim);
+  c.meas_lay = lay_of(c.meas);
+  RegistrationOptions ro = settings.registration;
+  if (ro.rotation) {
+    // The lays' difference, the nearest way round (a lay has no sense: 180 deg is the same).
+    double d = c.meas_lay.std_deg - c.sim_lay.std_deg;
+    d = std::remainder(d, 180.0);
+    ro.angle_guess = d * M_PI / 180;
+  }
+  c.registration = register_surfaces(c.sim, c.meas, ro);
+  c.aligned = align(c.meas, c.sim, c.registration);
+  c.difference = c.aligned;
+  c.sim_overlap = c.sim;
+  c.sim_overlap.valid.assign(c.sim.map.z.size(), 0);
+  std::size_t shared = 0, sim_valid = 0;
+  for (std::size_t k = 0; k < c.sim.map.z.size(); ++k) {
+    const bool both = c.sim.is_valid(k) && c.aligned.is_valid(k);
+    sim_valid += c.sim.is_valid(k);
+    c.sim_overlap.valid[k] = both;
+    c.difference.valid[k] = both;
+    c.difference.map.z[k] = both ? c.aligned.map.z[k] - c.sim.map.z[k] : 0.0;
+    shared += both;
+  }
+  c.overlap_share =
+      sim_valid > 0 ? static_cast<double>(shared) / static_cast<double>(sim_valid) : 0;
+  if (shared < 16)
+    throw InputError(where, "",
+                     "the registered maps share " + std::to_string(shared) +
+                         " nodes: expected maps of the same area of the surface");
+  c.sim_parameters = compute_parameters(c.sim_overlap, settings.names, settings.parameters);
+  c.meas_parameters = compute_parameters(c.aligned, settings.names, settings.parameters);
+  return c;
+}
+
+}  // namespace topomill
