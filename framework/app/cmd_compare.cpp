@@ -47,8 +47,9 @@ int cmd_compare(const Args& args) {
       "rotation", po::bool_switch(&rotation),
       "register the in-plane angle too, starting from the difference of the two lays")(
       "max-shift", po::value(&max_shift),
-      "largest registration shift in mm (0: any with half the smaller map overlapping); below half "
-      "the marks' period it keeps a periodic surface from matching a period away")(
+      "largest shift of the whole-node search in mm (0: any with half the smaller map "
+      "overlapping); below half the marks' period it keeps a periodic surface from matching a "
+      "period away (the refinement below a node may go beyond it)")(
       "json", po::bool_switch(&json), "print compare.json instead of the summary");
   opts.add(analysis.describe());
   opts.add(common_options(common));

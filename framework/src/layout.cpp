@@ -255,9 +255,13 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   // finished by the nearest pass on either side and by the teeth passing it along the feed. So
   // the passes run from one step-over before the patch to one after, and each pass feeds from a
   // few feeds per revolution (and the depth, for the contact point's offset on a slope) before
-  // the patch to as far after it.
+  // the patch to as far after it, and past the grid's first row where that lies before the
+  // patch (a patch of less than two rows). Never by a length tied to the spacing: the spindle is
+  // at its start angle where a pass begins, so the run-in places the teeth's marks, and a surface
+  // must not move when only its grid is refined (tests/integration/closed_form_test.cpp; the run
+  // once held 2 spacings, which moved the marks by twice the change of spacing).
   const int teeth = tool.teeth();
-  const double run = 3 * fz * teeth + ap + 2 * h;
+  const double run = 3 * fz * teeth + ap + 2 * (y_lo - g.y0);
   const double vf = fz * teeth * rpm / 60.0;
   const double omega =
       2 * M_PI * rpm / 60.0 * (cut.string("spindle_direction") == "cw" ? -1.0 : 1.0);

@@ -80,10 +80,13 @@ void ToolPath::set_waypoint_pass(std::size_t p) {
   }
   pass.t_end = tm.t.back();
   pass.x = w[0].centre.x(), pass.y_start = tm.foot_y[0];
-  // A straight line along X or Y in plan (it may climb or descend: an inclined plane).
+  // A straight line along X or Y in plan (it may climb or descend: an inclined plane), to
+  // round-off: points computed by another program (a centre less its runout) can differ across
+  // the line by an ulp, 1e-16 of a step, which no evaluator can see.
   const Vec3& u = first_unit;
-  const bool line_x = straight && u.y() == 0 && u.x() != 0,
-             line_y = straight && u.x() == 0 && u.y() != 0;
+  constexpr double kAcross = 1e-12;
+  const bool line_x = straight && std::abs(u.y()) <= kAcross && u.x() != 0,
+             line_y = straight && std::abs(u.x()) <= kAcross && u.y() != 0;
   pass.dx = line_x ? std::copysign(1.0, u.x()) : 0.0;
   pass.dy = line_y ? std::copysign(1.0, u.y()) : 0.0;
 }

@@ -148,8 +148,10 @@ TEST_CASE("both evaluators cut where edge_point puts the edge, with either helix
   const double mean = sum / static_cast<double>(n);
   INFO(evaluator << ", " << tool << ", " << direction << ": worst " << worst * 1e6 << " nm, mean "
                  << mean * 1e6 << " nm over " << n << " nodes");
-  // zmap, measured: mean 18-29 nm, worst 80-600 nm (its nearest node and time step); with its
-  // helix wound the other way (phi = theta - lag), mean 127-190 nm.
-  CHECK(worst < (evaluator == "zmap" ? 1e-3 : 1e-7));
+  // zmap, measured: mean 18-55 nm, worst 80-1600 nm (its nearest node and time step: the worst
+  // is a cusp between two nodes, so it moves with where the marks fall; 1592 nm since the
+  // run-in stopped depending on the spacing); with its helix wound the other way
+  // (phi = theta - lag), mean 127-190 nm: the mean is what tells them apart.
+  CHECK(worst < (evaluator == "zmap" ? 2e-3 : 1e-7));
   CHECK(mean < (evaluator == "zmap" ? 6e-5 : 1e-8));
 }
