@@ -140,6 +140,51 @@ TEST_CASE("measure on run's x3p output gives the run's own parameters", "[cli][m
   }
 }
 
+TEST_CASE("analysis.parameters and measure --parameters report the same full set",
+          "[cli][metrology]") {
+  // A run asked for every parameter at non-default settings writes them all, each with its
+  // setting; measure on its residual with the same options gives the same numbers; the processed
+  // surface measure writes (--out) measures the same again.
+  const std::string out = testing::temp_dir("run_all_parameters");
+  const auto r =
+      run_topomill("run configs/examples/quick.toml -q --out '" + out +
+                   "' --set 'output.formats=[\"x3p\"]' --set 'analysis.parameters=[\"all\"]' "
+                   "--set analysis.volume_p=5 --set analysis.acf_threshold=0.3");
+  REQUIRE(r.exit_code == 0);
+  const auto run = nlohmann::json::parse(testing::read_file(out + "/summary.json")).at("roughness");
+  CHECK(run.size() == 27);
+  CHECK(run.at("Vmp").at("method") == "p = 5 %");
+  CHECK(run.at("Sal").at("method") == "s = 0.3");
+  const std::string options = " --parameters all --volume-p 5 --acf-threshold 0.3 --json";
+  const auto m = run_topomill("measure '" + out + "/height_residual.x3p'" + options + " --out '" +
+                              out + "/processed.x3p'");
+  REQUIRE(m.exit_code == 0);
+  const auto again = run_topomill("measure '" + out + "/processed.x3p'" + options);
+  REQUIRE(again.exit_code == 0);
+  const auto measured = nlohmann::json::parse(m.out).at("roughness");
+  const auto reread = nlohmann::json::parse(again.out).at("roughness");
+  for (const auto& [name, p] : run.items()) {
+    INFO(name);
+    if (!p.contains("value")) continue;  // undefined for this map, said why
+    CHECK(measured.at(name).at("value").get<double>() ==
+          Approx(p.at("value").get<double>()).epsilon(1e-9).margin(1e-12));
+    CHECK(reread.at(name).at("value").get<double>() ==
+          Approx(p.at("value").get<double>()).epsilon(1e-9).margin(1e-12));
+  }
+  // Refused: a format that cannot be written, and settings out of order, naming the option.
+  auto bad = run_topomill("measure '" + out + "/height_residual.x3p' --out '" + out + "/p.png'");
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.err.find("key '--out': cannot write") != std::string::npos);
+  bad = run_topomill("measure '" + out + "/height_residual.x3p' --volume-p 90 --volume-q 80");
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.err.find("key '--volume-q': volume_q 80 % is not above volume_p 90 %") !=
+        std::string::npos);
+  bad = run_topomill("measure '" + out + "/height_residual.x3p' --parameters Sa,Vmcc");
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.err.find("did you mean 'Vmc'?") != std::string::npos);
+  CHECK_FALSE(fs::exists(out + "/p.png"));
+}
+
 TEST_CASE("a run that would not fit in memory is refused before any work, naming the key",
           "[cli][errors][resources]") {
   const std::string out = testing::temp_dir("memory");

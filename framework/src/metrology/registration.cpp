@@ -53,9 +53,12 @@ Registration coarse(const Surface& ref, const Surface& meas, const Transform& tu
                     const RegistrationOptions& options) {
   const Grid& ga = ref.map.grid;
   const Grid& gm = meas.map.grid;
-  // Every k-th node, so that the padded arrays stay below 2^22 values each.
+  // Every k-th node, so that the padded arrays stay below 2^20 values each (18 of them, real and
+  // complex: about 150 MB at most). The refinement starts within k nodes and converges from there
+  // (the surfaces are smooth over a few nodes; shown on the paper's patch at 1 and 2 um in the
+  // commit that set this).
   std::size_t k = 1;
-  while ((ga.nx / k + gm.nx / k) * (ga.ny / k + gm.ny / k) * 1.5 > double(1 << 22)) ++k;
+  while ((ga.nx / k + gm.nx / k) * (ga.ny / k + gm.ny / k) * 1.5 > double(1 << 20)) ++k;
   const double hx = ga.dx * static_cast<double>(k), hy = ga.dy * static_cast<double>(k);
   const std::size_t nxa = (ga.nx - 1) / k + 1, nya = (ga.ny - 1) / k + 1;
   // The measurement on the reference's lattice (turned back by the angle): the lattice nodes
