@@ -33,4 +33,12 @@ std::string code_fingerprint(std::vector<std::string> libraries) {
   return hex;
 }
 
+std::string file_checksum(const std::string& path) {
+  boost::crc_32_type crc;
+  add_file(crc, path);
+  char hex[9];
+  std::snprintf(hex, sizeof hex, "%08x", static_cast<unsigned>(crc.checksum()));
+  return hex;
+}
+
 }  // namespace topomill

@@ -12,4 +12,7 @@ namespace topomill {
 // a file that cannot be read counts as a distinct value, so it never matches a readable one.
 std::string code_fingerprint(std::vector<std::string> libraries);
 
+// CRC-32 (hex) of one file's bytes (an unreadable file: a value no readable file gives).
+std::string file_checksum(const std::string& path);
+
 }  // namespace topomill

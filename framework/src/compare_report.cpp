@@ -75,9 +75,13 @@ const Roughness::Reported* find(const ParameterValues& v, const std::string& nam
 }
 }  // namespace
 
-CompareReport write_compare_report(const std::string& dir, const Comparison& c,
+CompareReport write_compare_report(const std::string& dir_given, const Comparison& c,
                                    const CompareInputs& in) {
   std::error_code ec;
+  // "out/" and "out" alike: the stage must sit beside the directory, not inside it.
+  fs::path normal = fs::path(dir_given).lexically_normal();
+  if (!normal.has_filename()) normal = normal.parent_path();
+  const std::string dir = normal.string();
   if (fs::exists(dir, ec) &&
       !(fs::is_directory(dir, ec) &&
         (fs::is_empty(dir, ec) || fs::exists(fs::path(dir) / "compare.json", ec))))

@@ -7,12 +7,14 @@
 #include <memory>
 #include <thread>
 
+#include "code_fingerprint.hpp"
 #include "form_removal.hpp"
 #include "interrupt.hpp"
 #include "log.hpp"
 #include "metrology/form_removal.hpp"
 #include "resources.hpp"
 #include "swept_path.hpp"
+#include "topomill/input_files.hpp"
 #include "topomill/surface_shape.hpp"
 #include "topomill/tool_geometry.hpp"
 
@@ -73,6 +75,7 @@ EvaluationRequest evaluation_request(const Prepared& m, unsigned threads) {
 
 Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned threads) {
   Prepared out;
+  clear_recorded_input_files();  // the models below record the files they read
   out.tool = make<ToolGeometry>(scene, catalog, "tool");
   out.surface = make<SurfaceShape>(scene, catalog, "workpiece");
   out.path = make<PathModel>(scene, catalog, "path");
@@ -337,6 +340,9 @@ RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog,
   StageClock clock(result.stages);
 
   Prepared m = clock.run("setup", [&] { return prepare(scene, catalog, options.threads); });
+  // The files the models read, with their bytes' checksums as read (a sweep's resume compares).
+  for (const std::string& f : recorded_input_files())
+    result.input_files.emplace_back(f, file_checksum(f));
   throw_if_interrupted();
   if (m.force) apply_effects(scene, m, options.threads, clock, result);
   throw_if_interrupted();

@@ -44,6 +44,9 @@ struct RunResult {
   double peak_force = 0;             // N, largest |F| over all samples
   double peak_correction = 0;        // mm, largest path correction component
   Layout layout;
+  // Files the models read besides the scene (topomill/input_files.hpp), each with the CRC-32 of
+  // its bytes when read.
+  std::vector<std::pair<std::string, std::string>> input_files;
 };
 
 // The models a run uses, constructed, and the grid and tool path: everything that can reject a

@@ -6,6 +6,7 @@
 
 #include "../common/parallel_passes.hpp"
 #include "cl_reader.hpp"
+#include "topomill/input_files.hpp"
 #include "topomill/plugin.hpp"
 
 namespace topomill::plugins {
@@ -48,6 +49,7 @@ class ClFile : public PathModel {
     } catch (const std::runtime_error& e) {
       throw ParamError("file", "cannot read the cutter-location file " + path_ + ": " + e.what());
     }
+    record_input_file(path_);  // a resumed sweep reruns a case whose file changed
     if (data_.passes.empty())
       throw ParamError("file", "the cutter-location file " + path_ +
                                    " holds no move (a pass needs two points at least)");

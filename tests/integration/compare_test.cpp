@@ -161,8 +161,9 @@ TEST_CASE("compare's command writes its report and refuses what cannot be compar
   CHECK(j["parameters"]["Sa"]["difference"].get<double>() == Approx(0).margin(1e-9));
   CHECK(j["parameters"].contains("Vmp"));
   CHECK(j["registration"]["overlap_share"].get<double>() == 1.0);
-  // Again into the same directory: the earlier compare's output is replaced.
-  CHECK(testing::run_topomill("compare " + d + "/sim.x3p " + d + "/sim.x3p --out " + d + "/out")
+  // Again into the same directory, named with a trailing slash: the earlier compare's output is
+  // replaced (the stage sits beside it, not inside).
+  CHECK(testing::run_topomill("compare " + d + "/sim.x3p " + d + "/sim.x3p --out " + d + "/out/")
             .exit_code == 0);
   // Not into a directory that holds anything else.
   auto busy = testing::run_topomill("compare " + d + "/sim.x3p " + d + "/sim.x3p --out " + d);

@@ -171,6 +171,11 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
   toml::array effects, file_list;
   for (const auto& e : result.effects) effects.push_back(e);
   for (const auto& f : files) file_list.push_back(f);
+  // The files the models read, each with its bytes' checksum when read: a resumed sweep or
+  // study runs the case again when one differs (case_runner.cpp).
+  toml::array inputs;
+  for (const auto& [file, crc] : result.input_files)
+    inputs.push_back(toml::table{{"file", file}, {"crc32", crc}});
 
   toml::table root{
       {"topomill", toml::table{{"version", kVersion},
@@ -187,6 +192,7 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
                            {"form", scene.table("analysis").string("form")},
                            {"passes", static_cast<std::int64_t>(result.layout.path->passes())}}},
       {"roughness", roughness_table(result.parameters)},
+      {"inputs", std::move(inputs)},
       {"effects_detail", toml::table{{"time_step_s", result.dynamics_step},
                                      {"peak_force_N", result.peak_force},
                                      {"peak_correction_mm", result.peak_correction}}},
