@@ -27,13 +27,18 @@ Surface to_spacing(const Surface& s, double dx, double dy) {
   return resample(s, c);
 }
 
-double sq(const Surface& s) {
-  double sum = 0, sum2 = 0, n = 0;
+// Sq about the mean (two passes: one pass's sum of squares less the mean's square cancels to
+// round-off on a level map far from zero), and the largest |height|, for what "flat" means.
+std::pair<double, double> sq(const Surface& s) {
+  double sum = 0, n = 0, top = 0;
   for (std::size_t k = 0; k < s.map.z.size(); ++k)
-    if (s.is_valid(k)) sum += s.map.z[k], sum2 += s.map.z[k] * s.map.z[k], n += 1;
-  if (n == 0) return 0;
+    if (s.is_valid(k)) sum += s.map.z[k], n += 1, top = std::max(top, std::abs(s.map.z[k]));
+  if (n == 0) return {0.0, 0.0};
   const double m = sum / n;
-  return std::sqrt(std::max(0.0, sum2 / n - m * m));
+  double sum2 = 0;
+  for (std::size_t k = 0; k < s.map.z.size(); ++k)
+    if (s.is_valid(k)) sum2 += (s.map.z[k] - m) * (s.map.z[k] - m);
+  return {std::sqrt(sum2 / n), top};
 }
 }  // namespace
 
@@ -65,9 +70,21 @@ Comparison compare_surfaces(const Surface& sim_in, const Surface& meas_in,
   c.interpolation = "Keys cubic convolution (a = -1/2)";
   c.sim = to_spacing(sim_in, c.dx, c.dy);
   c.meas = to_spacing(meas_in, c.dx, c.dy);
-  const double sq_s = sq(c.sim), sq_m = sq(c.meas);
-  if (!(sq_s > 0 && sq_m > 0))
-    throw InputError(sq_s > 0 ? where : SourceRef{sim_in.source}, "",
+  for (const Surface* s : {&c.sim, &c.meas}) {
+    const Grid& g = s->map.grid;
+    if (g.nx < 4 || g.ny < 4)
+      throw InputError(SourceRef{s->source}, "",
+                       "on the common grid the map is " + std::to_string(g.nx) + " x " +
+                           std::to_string(g.ny) +
+                           " nodes: expected an areal map of 4 or more each way (a profile "
+                           "cannot be registered in plane)");
+  }
+  const auto [sq_s, top_s] = sq(c.sim);
+  const auto [sq_m, top_m] = sq(c.meas);
+  // Flat: relief below round-off of its heights (1e-12 of the largest).
+  const bool flat_s = !(sq_s > 1e-12 * top_s), flat_m = !(sq_m > 1e-12 * top_m);
+  if (flat_s || flat_m)
+    throw InputError(flat_s ? SourceRef{sim_in.source} : where, "",
                      "the map is flat after processing: expected a surface with relief");
   if (sq_s / sq_m > 100 || sq_m / sq_s > 100)
     throw InputError(where, "",

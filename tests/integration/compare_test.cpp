@@ -185,3 +185,27 @@ TEST_CASE("compare's command writes its report and refuses what cannot be compar
   for (const char* o : {"o2", "o3", "o4"}) CHECK_FALSE(fs::exists(dir / o));
   fs::remove_all(dir);
 }
+
+TEST_CASE(
+    "compare refuses a profile and a level map; spatial parameters of a profile are undefined",
+    "[compare]") {
+  const Surface sim = paper_surface(0.2, 0.005);
+  Surface profile;  // one row of the simulation
+  Grid g = sim.map.grid;
+  g.ny = 1;
+  profile.map = HeightMap(g);
+  for (std::size_t i = 0; i < g.nx; ++i) profile.map.at(i, 0) = sim.map.at(i, 0);
+  profile.source = "profile";
+  REQUIRE_THROWS_WITH(compare_surfaces(sim, profile, defaults(false, 0)),
+                      Catch::Contains("a profile cannot be registered in plane"));
+  // Level far from zero: one-pass variance would leave round-off, not 0 (seen: 3.7e-7 um, then
+  // refused as "units that do not match").
+  Surface level = sim;
+  for (double& z : level.map.z) z = 1.0;
+  level.source = "level";
+  REQUIRE_THROWS_WITH(compare_surfaces(sim, level, defaults(false, 0)),
+                      Catch::Contains("the map is flat after processing"));
+  const ParameterValues v = compute_parameters(profile, select_parameters({"spatial", "Sa"}), {});
+  REQUIRE(v.reported.size() == 1);
+  CHECK(v.undefined.size() == 3);
+}

@@ -74,9 +74,12 @@ double Autocorrelation::lag(std::ptrdiff_t a, std::ptrdiff_t b) const {
 }
 
 double Autocorrelation::at(double tx, double ty) const {
-  const double u = tx / dx_, v = ty / dy_;
-  if (!(std::abs(u) <= static_cast<double>(hx_) && std::abs(v) <= static_cast<double>(hy_)))
-    return 0.0;
+  double u = tx / dx_, v = ty / dy_;
+  // The last lag itself, reached by steps whose rounding lands an ulp beyond it, is still in.
+  constexpr double kEdge = 1e-9;
+  const double ex = static_cast<double>(hx_), ey = static_cast<double>(hy_);
+  if (!(std::abs(u) <= ex + kEdge && std::abs(v) <= ey + kEdge)) return 0.0;
+  u = std::clamp(u, -ex, ex), v = std::clamp(v, -ey, ey);
   if (hx_ == 0 || hy_ == 0) return lag(0, 0);  // a single row or column: no lag grid
   auto a = static_cast<std::ptrdiff_t>(std::floor(u)),
        b = static_cast<std::ptrdiff_t>(std::floor(v));

@@ -130,7 +130,16 @@ ParameterValues compute_parameters(const Surface& surface, const std::vector<std
     for (auto& r : roughness(surface.map, surface.valid).reported())
       if (chosen(names, r.name.c_str())) found.push_back(r);
 
-  if (any({"Sal", "Str"})) {
+  // The spatial parameters are areal: a profile (or a strip narrower than 4 nodes) has none.
+  const Grid& g = surface.map.grid;
+  const bool areal = g.nx >= 4 && g.ny >= 4;
+  if (!areal)
+    for (const char* n : {"Sal", "Str", "Std"})
+      if (chosen(names, n))
+        out.undefined.emplace_back(
+            n, "the map is " + std::to_string(g.nx) + " x " + std::to_string(g.ny) +
+                   " nodes: areal spatial parameters need 4 or more each way");
+  if (areal && any({"Sal", "Str"})) {
     const Autocorrelation acf(surface);
     const AcfDecay d = acf_decay(acf, settings.acf_threshold);
     const std::string s = "s = " + format_number(settings.acf_threshold);
@@ -144,7 +153,7 @@ ParameterValues compute_parameters(const Surface& surface, const std::vector<std
                                                     : "the surface has no height variation");
     }
   }
-  if (chosen(names, "Std")) {
+  if (areal && chosen(names, "Std")) {
     const PowerSpectrum psd(surface);
     put("Std", texture_direction(psd) * 180 / M_PI, "angular spectrum over 720 directions");
   }
