@@ -146,7 +146,7 @@ ParameterValues compute_parameters(const Surface& surface, const std::vector<std
     for (const char* n : {"Sal", "Str"}) {
       if (!chosen(names, n)) continue;
       if (d.decays)
-        put(n, n[2] == 'l' ? d.Sal : d.Str, s);
+        put(n, std::string(n) == "Sal" ? d.Sal : d.Str, s);
       else
         out.undefined.emplace_back(n, acf.defined() ? "the autocorrelation does not fall to " + s +
                                                           " in any direction within half the map"
