@@ -98,10 +98,11 @@ Surface AnalysisOptions::process(Surface s) const {
 }
 
 std::string AnalysisOptions::processing() const {
+  // ISO 25178-3's names for the three operations.
   std::ostringstream os;
-  os << "form " << form.name();
-  if (lambda_s > 0) os << ", S-filter " << format_number(lambda_s) << " mm";
-  if (lambda_c > 0) os << ", L-filter " << format_number(lambda_c) << " mm";
+  os << "F-operator " << form.name();
+  if (lambda_s > 0) os << ", S-filter nesting index " << format_number(lambda_s) << " mm";
+  if (lambda_c > 0) os << ", L-filter cut-off " << format_number(lambda_c) << " mm";
   return os.str();
 }
 

@@ -28,7 +28,8 @@ struct AnalysisOptions {
   // Form removed, then the S-filter, then the L-filter (ISO 25178-3's order: S, F, L; the form
   // is removed first so that the filters see no tilt or curvature at the map's edges).
   Surface process(Surface s) const;
-  // "form plane, S-filter 0.0025 mm, L-filter 0.8 mm": what `process` did, for reports.
+  // "F-operator plane, S-filter nesting index 0.0025 mm, L-filter cut-off 0.8 mm": what
+  // `process` did, in ISO 25178-3's words, for reports.
   std::string processing() const;
 };
 
