@@ -81,7 +81,8 @@ TEST_CASE("compare registers a map moved by a known shift and angle, with noise"
     double tx, ty, deg;  // nodes, nodes, deg
   };
   unsigned seed = 2;
-  for (const Move m : {Move{3.4, -2.7, 1.5}, Move{-1.25, 0.6, -0.8}, Move{0.3, 4.45, 0.0}}) {
+  for (const Move m : {Move{3.4, -2.7, 1.5}, Move{-1.25, 0.6, -0.8}, Move{0.3, 4.45, 0.0},
+                       Move{2.2, 1.3, 8.0}, Move{-0.7, -3.1, -15.0}}) {
     // 10 nm of noise on a surface of Sq about 1 um.
     const Surface meas =
         sample(fine.map, 0.5, h, m.tx * h, m.ty * h, m.deg * M_PI / 180, 1e-5, seed++);
