@@ -61,9 +61,11 @@ Registration coarse(const Surface& ref, const Surface& meas, const Transform& tu
   while ((ga.nx / k + gm.nx / k) * (ga.ny / k + gm.ny / k) * 1.5 > double(1 << 20)) ++k;
   const double hx = ga.dx * static_cast<double>(k), hy = ga.dy * static_cast<double>(k);
   const std::size_t nxa = (ga.nx - 1) / k + 1, nya = (ga.ny - 1) / k + 1;
-  // The measurement on the reference's lattice (turned back by the angle): the lattice nodes
-  // whose turned position falls in the measured map's box.
-  Transform back = turn;
+  // The measurement on the reference's lattice, sampled where the lattice node lands when turned
+  // by the angle about o (no shift yet): the lattice nodes whose turned position falls in the
+  // measured map's box, found by turning that box back.
+  Transform turned = turn;
+  turned.tx = turned.ty = 0;
   double lo_x = INFINITY, hi_x = -INFINITY, lo_y = INFINITY, hi_y = -INFINITY;
   {
     const double c = std::cos(-turn.angle), s = std::sin(-turn.angle);
@@ -106,8 +108,7 @@ Registration coarse(const Surface& ref, const Surface& meas, const Transform& tu
     for (std::size_t i = 0; i < nxb; ++i) {
       const double x = ga.x0 + static_cast<double>(ib0 + static_cast<std::ptrdiff_t>(i)) * hx;
       const double y = ga.y0 + static_cast<double>(jb0 + static_cast<std::ptrdiff_t>(j)) * hy;
-      back.tx = back.ty = 0;
-      const Vec2 m = back(x, y);
+      const Vec2 m = turned(x, y);
       if (const auto z = sample.at(m.x(), m.y())) zb[j * nxb + i] = *z, sum += *z, valid_b += 1;
     }
   const double mean_b = valid_b > 0 ? sum / valid_b : 0.0;
@@ -164,7 +165,7 @@ Registration coarse(const Surface& ref, const Surface& meas, const Transform& tu
             std::string(options.max_shift > 0 ? " within the largest shift allowed" : "") +
             ": expected maps of the same area of the surface (crop or widen them, "
             "or raise --max-shift)");
-  // The lattice turned back: a shift there is the shift turned by the angle in the measurement.
+  // A shift along the lattice is, in the measurement, that shift turned by the angle.
   const double c = std::cos(turn.angle), s = std::sin(turn.angle);
   const double tx = best.tx, ty = best.ty;
   best.tx = c * tx - s * ty, best.ty = s * tx + c * ty;
