@@ -42,9 +42,10 @@ struct Comparison {
   double overlap_share = 0;  // of the simulation's valid nodes
 };
 
-// Throws InputError (naming the measured file) for inputs that cannot be compared: spacings more
-// than 8 times apart, heights more than 100 times apart in Sq (units that do not match), no
-// overlap after registration.
+// Throws InputError (naming the file at fault) for inputs that cannot be compared: spacings more
+// than 8 times apart, a map narrower than 4 nodes either way on the common grid (a profile), a
+// flat map, heights more than 100 times apart in Sq (units that do not match), no overlap after
+// registration.
 Comparison compare_surfaces(const Surface& sim, const Surface& meas, const CompareSettings& s);
 
 }  // namespace topomill
