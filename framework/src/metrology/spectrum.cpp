@@ -35,12 +35,16 @@ double vertex(double a, double b, double c) {
 PowerSpectrum::PowerSpectrum(const Surface& surface) {
   const Grid& g = surface.map.grid;
   dx_ = g.dx, dy_ = g.dy;
-  // Zero-padded to four times the map each way (twice, or not at all, where that would exceed
-  // 2^24 values): bins closer than the map's, so that the rays of the angular spectrum pass
-  // through a peak's shape, not between its samples (Std of a sine 20 waves across the map:
+  // Zero-padded to four times the map each way, or twice, or not at all: the most that keeps
+  // the padded field within 2^22 values (about 100 MB with its spectrum and the planner's copy,
+  // whatever the map; unpadded, 24 bytes a node). Closer bins let the angular spectrum's rays
+  // pass through a peak's shape, not between its samples (Std of a sine 20 waves across the map:
   // within 0.35 deg padded twice, 0.2 deg four times; tests/unit/iso_parameters_test.cpp).
-  const std::size_t n = g.size();
-  const std::size_t factor = n <= (std::size_t{1} << 20) ? 4 : n <= (std::size_t{1} << 22) ? 2 : 1;
+  constexpr double kMaxPadded = 1 << 22;
+  std::size_t factor = 4;
+  while (factor > 1 && static_cast<double>(factor * g.nx) * static_cast<double>(factor * g.ny) >
+                           kMaxPadded)
+    factor /= 2;
   nx_ = fft_size(factor * g.nx), ny_ = fft_size(factor * g.ny);
   lowest_ =
       2 * std::max(1 / (static_cast<double>(g.nx) * dx_), 1 / (static_cast<double>(g.ny) * dy_));
