@@ -5,6 +5,7 @@
 
 #include "metrology/resample.hpp"
 #include "metrology/spectrum.hpp"
+#include "roughness.hpp"
 #include "topomill/error.hpp"
 
 namespace topomill {
@@ -27,19 +28,6 @@ Surface to_spacing(const Surface& s, double dx, double dy) {
   return resample(s, c);
 }
 
-// Sq about the mean (two passes: one pass's sum of squares less the mean's square cancels to
-// round-off on a level map far from zero), and the largest |height|, for what "flat" means.
-std::pair<double, double> sq(const Surface& s) {
-  double sum = 0, n = 0, top = 0;
-  for (std::size_t k = 0; k < s.map.z.size(); ++k)
-    if (s.is_valid(k)) sum += s.map.z[k], n += 1, top = std::max(top, std::abs(s.map.z[k]));
-  if (n == 0) return {0.0, 0.0};
-  const double m = sum / n;
-  double sum2 = 0;
-  for (std::size_t k = 0; k < s.map.z.size(); ++k)
-    if (s.is_valid(k)) sum2 += (s.map.z[k] - m) * (s.map.z[k] - m);
-  return {std::sqrt(sum2 / n), top};
-}
 }  // namespace
 
 Lay lay_of(const Surface& s) {
@@ -79,10 +67,15 @@ Comparison compare_surfaces(const Surface& sim_in, const Surface& meas_in,
                            " nodes: expected an areal map of 4 or more each way (a profile "
                            "cannot be registered in plane)");
   }
-  const auto [sq_s, top_s] = sq(c.sim);
-  const auto [sq_m, top_m] = sq(c.meas);
+  // Sq about the mean (roughness(): two passes, so a level map far from zero gives 0, not the
+  // round-off of a sum of squares less the mean's square), and the largest |height|.
+  const Roughness rs = roughness(c.sim.map, c.sim.valid), rm = roughness(c.meas.map, c.meas.valid);
+  const double sq_s = rs.Sq, sq_m = rm.Sq;
+  auto top = [](const Roughness& r) {
+    return std::max(std::abs(r.mean + r.Sp), std::abs(r.mean - r.Sv));
+  };
   // Flat: relief below round-off of its heights (1e-12 of the largest).
-  const bool flat_s = !(sq_s > 1e-12 * top_s), flat_m = !(sq_m > 1e-12 * top_m);
+  const bool flat_s = !(sq_s > 1e-12 * top(rs)), flat_m = !(sq_m > 1e-12 * top(rm));
   if (flat_s || flat_m)
     throw InputError(flat_s ? SourceRef{sim_in.source} : where, "",
                      "the map is flat after processing: expected a surface with relief");

@@ -383,10 +383,11 @@ RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog,
   result.roughness = clock.run("parameters", [&] {
     Surface residual;
     residual.map = result.residual;
+    const Roughness height = roughness(result.residual);
     result.parameters = compute_parameters(
         residual, select_parameters(scene.table("analysis").strings("parameters")),
-        m.parameter_settings);
-    return roughness(result.residual);
+        m.parameter_settings, &height);
+    return height;
   });
   return result;
 }

@@ -25,11 +25,8 @@ Autocorrelation::Autocorrelation(const Surface& surface) {
   const Grid& g = surface.map.grid;
   dx_ = g.dx, dy_ = g.dy;
   hx_ = static_cast<std::ptrdiff_t>(g.nx / 2), hy_ = static_cast<std::ptrdiff_t>(g.ny / 2);
-  double sum = 0, count = 0;
-  for (std::size_t k = 0; k < g.size(); ++k)
-    if (surface.is_valid(k)) sum += surface.map.z[k], count += 1;
-  if (count < 2) return;
-  const double mean = sum / count;
+  if (surface.valid_count() < 2) return;
+  const double mean = surface.mean();
   // Padding beyond the largest lag kept: no lag of interest wraps onto another.
   const std::size_t px = fft_size(g.nx + static_cast<std::size_t>(hx_) + 1);
   const std::size_t py = fft_size(g.ny + static_cast<std::size_t>(hy_) + 1);

@@ -8,11 +8,10 @@ namespace topomill {
 
 MaterialRatioCurve::MaterialRatioCurve(const Surface& surface) {
   const auto& z = surface.map.z;
-  double sum = 0;
   for (std::size_t i = 0; i < z.size(); ++i)
-    if (surface.is_valid(i)) z_.push_back(z[i]), sum += z[i];
+    if (surface.is_valid(i)) z_.push_back(z[i]);
   if (z_.empty()) return;
-  const double mean = sum / static_cast<double>(z_.size());
+  const double mean = surface.mean();
   for (double& h : z_) h -= mean;
   std::sort(z_.begin(), z_.end(), std::greater<double>());
   n_ = static_cast<double>(z_.size());

@@ -114,7 +114,7 @@ std::vector<std::string> select_parameters(const std::vector<std::string>& words
 }
 
 ParameterValues compute_parameters(const Surface& surface, const std::vector<std::string>& names,
-                                   const ParameterSettings& settings) {
+                                   const ParameterSettings& settings, const Roughness* height) {
   // Each value by name, then listed in catalogue order; what is not selected is not computed.
   std::vector<Roughness::Reported> found;
   ParameterValues out;
@@ -127,7 +127,7 @@ ParameterValues compute_parameters(const Surface& surface, const std::vector<std
   };
 
   if (any({"Sa", "Sq", "Sp", "Sv", "Sz", "Ssk", "Sku", "Sdq", "Sdr", "Sdr_gwyddion"}))
-    for (auto& r : roughness(surface.map, surface.valid).reported())
+    for (auto& r : (height ? *height : roughness(surface.map, surface.valid)).reported())
       if (chosen(names, r.name.c_str())) found.push_back(r);
 
   // The spatial parameters are areal: a profile (or a strip narrower than 4 nodes) has none.

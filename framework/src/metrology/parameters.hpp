@@ -46,7 +46,10 @@ struct ParameterValues {
   // Selected but not defined for this surface, with why (e.g. Sal of a map with no variance).
   std::vector<std::pair<std::string, std::string>> undefined;
 };
+// `height`: the surface's roughness() when the caller has it already (a run does), so that it is
+// not computed twice.
 ParameterValues compute_parameters(const Surface& surface, const std::vector<std::string>& names,
-                                   const ParameterSettings& settings);
+                                   const ParameterSettings& settings,
+                                   const Roughness* height = nullptr);
 
 }  // namespace topomill

@@ -173,9 +173,13 @@ Registration coarse(const Surface& ref, const Surface& meas, const Transform& tu
   return best;
 }
 
-struct Fit {
-  double cost = INFINITY;  // mean square residual
-  std::size_t used = 0;
+// MEAS(T(p)) - REF(p) - offset over a set of the reference's nodes where the measurement has a
+// height: their sum, sum of squares and count.
+struct Residuals {
+  double sum = 0, squares = 0;
+  std::size_t n = 0;
+  double mean() const { return n > 0 ? sum / static_cast<double>(n) : 0.0; }
+  double mean_square() const { return n > 0 ? squares / static_cast<double>(n) : INFINITY; }
 };
 }  // namespace
 
@@ -205,29 +209,23 @@ Registration register_surfaces(const Surface& ref, const Surface& meas,
     (p == 0 ? t.tx : p == 1 ? t.ty : t.angle) = v;
     return t;
   };
-  auto cost = [&](const Transform& t, double offset) {
-    Fit f;
-    double sum = 0;
-    for (std::size_t q : used) {
+  auto residuals = [&](const Transform& t, double offset, const std::vector<std::size_t>& set) {
+    Residuals r;
+    for (std::size_t q : set) {
       const Vec2 m = t(g.x(q % g.nx), g.y(q / g.nx));
       if (const auto z = sample.at(m.x(), m.y())) {
         const double d = *z - ref.map.z[q] - offset;
-        sum += d * d, f.used += 1;
+        r.sum += d, r.squares += d * d, r.n += 1;
       }
     }
-    f.cost = f.used > 0 ? sum / static_cast<double>(f.used) : INFINITY;
-    return f;
+    return r;
   };
-  double offset = 0;
-  {  // the offset's least-squares value at the start: the mean difference
-    double sum = 0, n = 0;
-    for (std::size_t q : used) {
-      const Vec2 m = T(g.x(q % g.nx), g.y(q / g.nx));
-      if (const auto z = sample.at(m.x(), m.y())) sum += *z - ref.map.z[q], n += 1;
-    }
-    offset = n > 0 ? sum / n : 0.0;
-  }
-  double now = cost(T, offset).cost;
+  auto cost = [&](const Transform& t, double offset) {
+    return residuals(t, offset, used).mean_square();
+  };
+  // The offset's least-squares value at the start: the mean difference.
+  double offset = residuals(T, 0.0, used).mean();
+  double now = cost(T, offset);
   for (r.iterations = 0; r.iterations < 50; ++r.iterations) {
     Eigen::Matrix4d JtJ = Eigen::Matrix4d::Zero();
     Eigen::Vector4d Jtr = Eigen::Vector4d::Zero();
@@ -261,7 +259,7 @@ Registration register_surfaces(const Surface& ref, const Surface& meas,
       next = T;
       next.tx += scale * delta[0], next.ty += scale * delta[1], next.angle += scale * delta[2];
       next_offset = offset + scale * delta[3];
-      next_cost = cost(next, next_offset).cost;
+      next_cost = cost(next, next_offset);
       if (next_cost <= now) break;
     }
     if (!(next_cost <= now)) {
@@ -278,16 +276,9 @@ Registration register_surfaces(const Surface& ref, const Surface& meas,
   }
   r.tx = T.tx, r.ty = T.ty, r.angle = T.angle, r.offset = offset;
   // The overlap and the residual over every node of the reference.
-  double sum = 0;
-  r.overlap = 0;
-  for (std::size_t q : nodes) {
-    const Vec2 m = T(g.x(q % g.nx), g.y(q / g.nx));
-    if (const auto z = sample.at(m.x(), m.y())) {
-      const double d = *z - ref.map.z[q] - offset;
-      sum += d * d, r.overlap += 1;
-    }
-  }
-  r.rms = r.overlap > 0 ? std::sqrt(sum / static_cast<double>(r.overlap)) : 0.0;
+  const Residuals all = residuals(T, offset, nodes);
+  r.overlap = all.n;
+  r.rms = all.n > 0 ? std::sqrt(all.mean_square()) : 0.0;
   return r;
 }
 

@@ -18,13 +18,6 @@ std::vector<double> hann(std::size_t n) {
   return w;
 }
 
-double valid_mean(const Surface& surface) {
-  double sum = 0, n = 0;
-  for (std::size_t k = 0; k < surface.map.z.size(); ++k)
-    if (surface.is_valid(k)) sum += surface.map.z[k], n += 1;
-  return n > 0 ? sum / n : 0.0;
-}
-
 // The parabola's vertex through (-1, a), (0, b), (1, c), as an offset from 0 within [-1/2, 1/2].
 double vertex(double a, double b, double c) {
   const double d = a - 2 * b + c;
@@ -42,13 +35,13 @@ PowerSpectrum::PowerSpectrum(const Surface& surface) {
   // within 0.35 deg padded twice, 0.2 deg four times; tests/unit/iso_parameters_test.cpp).
   constexpr double kMaxPadded = 1 << 22;
   std::size_t factor = 4;
-  while (factor > 1 && static_cast<double>(factor * g.nx) * static_cast<double>(factor * g.ny) >
-                           kMaxPadded)
+  while (factor > 1 &&
+         static_cast<double>(factor * g.nx) * static_cast<double>(factor * g.ny) > kMaxPadded)
     factor /= 2;
   nx_ = fft_size(factor * g.nx), ny_ = fft_size(factor * g.ny);
   lowest_ =
       2 * std::max(1 / (static_cast<double>(g.nx) * dx_), 1 / (static_cast<double>(g.ny) * dy_));
-  const double mean = valid_mean(surface);
+  const double mean = surface.mean();
   const auto wx = hann(g.nx), wy = hann(g.ny);
   std::vector<double> field(nx_ * ny_, 0.0);
   double w2 = 0;
@@ -132,7 +125,7 @@ double dominant_period(const Surface& surface, double theta) {
   std::size_t m = static_cast<std::size_t>(side / h) + 1;
   if (m > kMaxSamples) m = kMaxSamples, h = side / static_cast<double>(m - 1);
   if (m < 8) return 0.0;
-  const double mean = valid_mean(surface);
+  const double mean = surface.mean();
   const double xc = g.x0 + 0.5 * lx, yc = g.y0 + 0.5 * ly,
                half = 0.5 * h * static_cast<double>(m - 1);
   // Height at (x, y), bilinear between the four nodes about it; the mean where one is invalid.

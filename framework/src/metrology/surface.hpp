@@ -17,6 +17,8 @@ struct Surface {
 
   bool is_valid(std::size_t index) const { return valid.empty() || valid[index] != 0; }
   std::size_t valid_count() const;
+  // The mean of the valid heights (0 when there are none), summed in node order.
+  double mean() const;
 };
 
 }  // namespace topomill
