@@ -3,6 +3,12 @@
 // already) is added exactly. A probe then costs a few multiplies instead of the surface's
 // trigonometry. The step is halved until the interpolation is within `tolerance` of the nominal
 // centre at every interval's midpoint, so the table is as good as the path at any surface.
+//
+// A table may hold one straight stretch of a bent pass (PassageSetup::Window): beyond the
+// stretch's ends it continues the stretch's line instead of turning with the pass, so that the
+// path it holds stays smooth (a corner would break every bound the walks prove by) and looks
+// beyond the ends see where the stretch was going. The walks count crossings within the stretch
+// only, where the table is the pass.
 #pragma once
 
 #include <array>
@@ -17,17 +23,26 @@
 
 namespace topomill::plugins {
 
+// A stretch [lo, hi] of a pass, continued beyond each end at the velocity it has there (of the
+// spindle's axis: the runout still circles about the continued line). The default is the whole
+// pass as the path gives it.
+struct Stretch {
+  double lo = -INFINITY, hi = INFINITY;
+  Vec3 v_lo = Vec3::Zero(), v_hi = Vec3::Zero();
+};
+
 class CentreTable {
  public:
   // Covers [t_lo, t_hi]; outside it the path is asked directly. `spindle_axis`: the nominal
   // centre less the runout (the spindle's axis: smooth, where the centre circles about it), for
   // the walks' floor.
   CentreTable(const ToolPath& path, std::size_t pass, double t_lo, double t_hi, double tolerance,
-              bool spindle_axis = false)
+              bool spindle_axis = false, const Stretch& stretch = Stretch{})
       : path_(&path),
         pass_(pass),
         correction_(&path.correction_samples(pass)),
-        spindle_axis_(spindle_axis) {
+        spindle_axis_(spindle_axis),
+        stretch_(stretch) {
     index_correction();
     double dt = std::max((t_hi - t_lo) / 16, 1e-9);
     // At most 2^22 knots (200 MB): a smooth path needs far fewer, and a path that is not (NaN
@@ -193,8 +208,16 @@ class CentreTable {
     return worst;
   }
 
-  // What the table holds at t: the nominal centre, or the spindle's axis there.
+  // What the table holds at t: the nominal centre, or the spindle's axis there; beyond a
+  // stretch's ends, its line continued.
   Vec3 path_centre(double t) const {
+    if (t < stretch_.lo || t > stretch_.hi) {
+      const double end = t < stretch_.lo ? stretch_.lo : stretch_.hi;
+      const Vec3& v = t < stretch_.lo ? stretch_.v_lo : stretch_.v_hi;
+      const Vec3 axis =
+          path_->nominal_centre(pass_, end) - path_->runout_offset(pass_, end) + v * (t - end);
+      return spindle_axis_ ? axis : Vec3(axis + path_->runout_offset(pass_, t));
+    }
     return spindle_axis_ ? Vec3(path_->nominal_centre(pass_, t) - path_->runout_offset(pass_, t))
                          : path_->nominal_centre(pass_, t);
   }
@@ -203,6 +226,7 @@ class CentreTable {
   std::size_t pass_;
   const ToolPath::Correction* correction_;
   bool spindle_axis_;
+  Stretch stretch_;
   double t0_ = 0, inv_dt_ = 1, accel_xy_ = 0;
   std::vector<Vec3> knots_;
   using Cubic = std::array<Vec3, 4>;  // coefficients of s^0 .. s^3

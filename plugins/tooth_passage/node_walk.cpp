@@ -7,14 +7,10 @@ namespace topomill::plugins {
 double node_height_reference(const PassageSetup& s, double x, double y, NodeCounts& counts,
                              std::vector<std::pair<double, std::size_t>>& order,
                              std::vector<PassageGeometry::Crossing>& roots) {
-  order.clear();
-  for (std::size_t p = 0; p < s.line.size(); ++p) {
-    const double across = std::abs((s.along_y ? x : y) - s.line[p]);
-    if (across < s.reach) order.push_back({across, p});
-  }
-  std::sort(order.begin(), order.end());
+  s.near(x, y, order);
   double best = INFINITY;
   for (const auto& entry : order) {
+    if (!s.parallel && entry.first >= best) break;  // none left can lower the node (near())
     const std::size_t p = entry.second;
     const double t0 = s.level_time(p, x, y);
     if (std::isnan(t0)) continue;
@@ -28,7 +24,7 @@ double node_height_reference(const PassageSetup& s, double x, double y, NodeCoun
     const double slack = s.wiggles ? 1e-9 : 0.0;   // as the row walk's
     if (geo.bound(t_b) - slack >= best) continue;  // this pass cannot lower the node
     best = std::min(best, geo.walk(t_b, roots, counts.passages, best));
-    if (std::abs((s.along_y ? x : y) - s.tip_line(p)) < PassageGeometry::kOnAxis)
+    if (s.on_tip_line(p, x, y))
       best = std::min(best, geo.tip_height(s.tilted[p] ? s.tip_time(p, x, y) : t0));
   }
   return best;
@@ -37,16 +33,18 @@ double node_height_reference(const PassageSetup& s, double x, double y, NodeCoun
 double node_height_scan(const PassageSetup& s, double x, double y, double step,
                         NodeCounts& counts) {
   double best = INFINITY;
-  for (std::size_t p = 0; p < s.line.size(); ++p) {
-    if (std::abs((s.along_y ? x : y) - s.line[p]) >= s.reach) continue;
+  std::vector<std::pair<double, std::size_t>> order;
+  s.near(x, y, order);
+  for (const auto& entry : order) {
+    const std::size_t p = entry.second;
     const double t0 = s.level_time(p, x, y);
     if (std::isnan(t0)) continue;
     const auto radii = s.contact_radii(p, t0);
     const PassageGeometry geo(s, p, x, y, radii.first, radii.second);
     // The centre moves along the feed at least at the feed speed: farther than this from t0 it
     // is more than `reach` away.
-    const double ta = std::max(0.0, t0 - s.reach / s.speed);
-    const double tb = std::min(geo.t_end(), t0 + s.reach / s.speed);
+    const double ta = std::max(geo.t_lo(), t0 - s.reach / s.speed);
+    const double tb = std::min(geo.t_hi(), t0 + s.reach / s.speed);
     for (int tooth = 0; tooth < s.teeth; ++tooth) {
       double t_prev = ta, g_prev = geo.probe(tooth, ta).g;
       for (double t = ta + step; t_prev < tb; t += step) {

@@ -13,13 +13,45 @@ inline double norm(double x, double y) {
 constexpr double kTableTolerance = 1e-7;  // mm
 }  // namespace
 
+namespace {
+// A bent pass's windows: runs of segments collinear to round-off at one speed (the criterion
+// ToolPath uses for a whole pass), so that a line written as many points stays one window. Where
+// the data's axis turns, each segment is a window of its own: its frame turns smoothly only
+// between its two points (BlendFrame).
+std::vector<PassageSetup::Window> windows_of(const ToolPath& path, std::size_t p) {
+  const ToolPath::Pass& pass = path.pass(p);
+  const bool turns = pass.posture.given && pass.posture.turns;
+  const bool line = pass.waypoints.empty() || ((pass.dx != 0 || pass.dy != 0) && !turns);
+  if (line) return {{p, 0.0, pass.t_end, 0}};
+  std::vector<PassageSetup::Window> out;
+  const auto& w = pass.waypoints;
+  for (std::size_t k = 0; k + 1 < w.size(); ++k) {
+    const double lo = path.waypoint_time(p, k), hi = path.waypoint_time(p, k + 1);
+    if (k > 0) {
+      const double before = 0.5 * (path.waypoint_time(p, k - 1) + lo);
+      const Vec3 u = path.feed_direction(p, 0.5 * (lo + hi));
+      if ((path.feed_direction(p, before) - u).norm() < 1e-12 &&
+          std::abs(w[k].speed - w[k - 1].speed) <= 1e-12 * w[k - 1].speed &&
+          w[k - 1].axis == w[k].axis && w[k].axis == w[k + 1].axis) {
+        out.back().t_hi = hi;
+        continue;
+      }
+    }
+    out.push_back({p, lo, hi, k});
+  }
+  out.front().t_lo = 0.0, out.back().t_hi = pass.t_end;
+  return out;
+}
+}  // namespace
+
 PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iterations_)
     : path(rq.path),
       tool(rq.tool),
+      parallel(false),
       R(rq.tool->radius()),
       R2(R * R),
       omega(rq.path->spindle_rate()),
-      speed(slowest(*rq.path)),
+      speed(INFINITY),
       rev(kTwoPi / std::abs(omega)),
       period(rev / rq.tool->teeth()),
       reach(R + rq.path->max_correction()),
@@ -35,21 +67,36 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
   for (int j = 0; j < teeth; ++j) tooth_angle.push_back(tool->tooth_angle(j));
   sin_tip = std::sin(tool->min_polar_angle());
   lag_tip = tool->lag(tool->min_polar_angle());
-  // A probe may look a revolution beyond either end of a pass.
+  for (std::size_t p = 0; p < path->passes(); ++p)
+    for (const Window& w : windows_of(*path, p)) window.push_back(w);
+  parallel = path->feed_axis() != ToolPath::FeedAxis::None && window.size() == path->passes();
+  // A probe may look a revolution beyond either end of a window.
   const double pad = 2 * rev;
   const double k1 = lag_shape.over(0.0, 0.95 * R).k1;  // the lag's slope over the ball
   gap_lag = std::sqrt(1 + k1 * k1);
-  for (std::size_t p = 0; p < path->passes(); ++p) {
-    centre.emplace_back(*path, p, -pad, path->pass(p).t_end + pad, kTableTolerance);
+  for (const Window& win : window) {
+    const std::size_t p = win.pass;
+    const double t_lo = win.t_lo, t_hi = win.t_hi, t_mid = 0.5 * (t_lo + t_hi);
+    // The feed in plan along the window (the paper's: uniform in Y).
+    const Vec3 f = path->feed_direction(p, t_mid);
+    speed = std::min(speed, path->pass(p).waypoints.empty()
+                                ? path->feed_speed()
+                                : path->speed(p, t_mid) * std::hypot(f.x(), f.y()));
+    // A window inside a bent pass continues its line beyond its inner ends.
+    Stretch stretch;
+    const Vec3 velocity = f * path->speed(p, t_mid);
+    if (t_lo > 0) stretch.lo = t_lo, stretch.v_lo = velocity;
+    if (t_hi < path->pass(p).t_end) stretch.hi = t_hi, stretch.v_hi = velocity;
+    centre.emplace_back(*path, p, t_lo - pad, t_hi + pad, kTableTolerance, false, stretch);
     if (runout > 0)
-      spindle_axis.emplace_back(*path, p, -pad, path->pass(p).t_end + pad, kTableTolerance, true);
+      spindle_axis.emplace_back(*path, p, t_lo - pad, t_hi + pad, kTableTolerance, true, stretch);
     // A fixed posture keeps the frame over the pass; along the normal over the curvature it
     // turns about X with the inclination (tooth_passage.cpp says which postures are followed).
     const bool tilt = !path->pass(p).posture.vertical();
     tilted.push_back(tilt ? 1 : 0);
-    to_tool.push_back(path->tool_frame(p, 0.0).transpose());
-    turn.push_back(turn_bounds(*path, p, pad));
-    const Vec3 axis = path->axis(p, 0.0);
+    to_tool.push_back(path->tool_frame(p, t_lo).transpose());
+    turn.push_back(turn_bounds(*path, win, pad));
+    const Vec3 axis = path->axis(p, t_lo);
     tip_offset.emplace_back(tilt ? -R * axis.x() : 0.0, tilt ? -R * axis.y() : 0.0);
     const Vec3 c0 = path->nominal_centre(p, 0.0);
     line.push_back(along_y ? c0.x() : c0.y());
@@ -57,23 +104,64 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     const auto [lo, hi] = centre.back().correction_box(-INFINITY, INFINITY);
     shift_lo.push_back(lo - Vec3(runout, runout, 0)),
         shift_hi.push_back(hi + Vec3(runout, runout, 0));
-    lowest_centre.push_back(centre.back().lowest_z(0.0, path->pass(p).t_end));
+    lowest_centre.push_back(centre.back().lowest_z(t_lo, t_hi));
     nominal_speed.push_back(centre.back().top_speed());
-    const double v = top_speed(p, -INFINITY, INFINITY).first, half = 0.5 * rev;
+    const double v = top_speed(centre.size() - 1, -INFINITY, INFINITY).first, half = 0.5 * rev;
     gap_rho.emplace_back(1.01 * (v * half + gap_lag * v / std::abs(omega)), 0.95 * R - v * half);
-    // The line from the pass's nominal start to its end in plan; the correction's plan offset at
-    // most its box's farthest corner.
-    const Vec3 a = path->nominal_centre(p, 0.0), b = path->nominal_centre(p, path->pass(p).t_end);
+    // The line from the window's nominal start to its end in plan; the correction's plan offset
+    // at most its box's farthest corner.
+    const Vec3 a = path->nominal_centre(p, t_lo), b = path->nominal_centre(p, t_hi);
     const double len = std::hypot(b.x() - a.x(), b.y() - a.y());
+    const double sx = std::max(std::abs(lo.x()), std::abs(hi.x()));
+    const double sy = std::max(std::abs(lo.y()), std::abs(hi.y()));
     PlanLine l{a.x(), a.y(), 0.0, 0.0, INFINITY, v};
     if (len > 0) {
       l.ux = (b.x() - a.x()) / len, l.uy = (b.y() - a.y()) / len;
-      const double sx = std::max(std::abs(lo.x()), std::abs(hi.x()));
-      const double sy = std::max(std::abs(lo.y()), std::abs(hi.y()));
       l.off = centre.back().plan_deviation(a, l.ux, l.uy) + std::hypot(sx, sy) + 1e-12;
     }
     plan_line.push_back(l);
+    const Vec3 sa = a - path->runout_offset(p, t_lo), sb = b - path->runout_offset(p, t_hi);
+    segment.push_back({sa.x(), sa.y(), sb.x(), sb.y(), runout + std::hypot(sx, sy) + 1e-9});
   }
+  speed = std::max(speed, 1e-12);
+}
+
+double PassageSetup::PlanSegment::distance(double x, double y) const {
+  const double ux = bx - ax, uy = by - ay, len2 = ux * ux + uy * uy;
+  const double u = len2 > 0 ? std::clamp(((x - ax) * ux + (y - ay) * uy) / len2, 0.0, 1.0) : 0.0;
+  return std::hypot(x - ax - u * ux, y - ay - u * uy);
+}
+
+void PassageSetup::near(double x, double y,
+                        std::vector<std::pair<double, std::size_t>>& out) const {
+  out.clear();
+  for (std::size_t w = 0; w < window.size(); ++w) {
+    if (parallel) {
+      const double across = std::abs((along_y ? x : y) - line[w]);
+      if (across < reach) out.push_back({across, w});
+    } else if (const double d = segment[w].distance(x, y) - segment[w].slack; d < R) {
+      // Every crossing lies on the ball, no lower than its lowest centre less the sphere's
+      // depth at the least distance the centre comes to in plan.
+      out.push_back({lowest_centre[w] - std::sqrt(R2 - std::pow(std::max(d, 0.0), 2)), w});
+    }
+  }
+  std::sort(out.begin(), out.end());
+}
+
+bool PassageSetup::on_tip_line(std::size_t w, double x, double y) const {
+  if (parallel) return std::abs((along_y ? x : y) - tip_line(w)) < PassageGeometry::kOnAxis;
+  if (turn[w].on) {
+    // The tip's path bends as the frame turns: where the tip is level with the node, whether it
+    // is over it (to a micrometre: tip_height then asks for kOnAxis).
+    const double t = tip_time(w, x, y);
+    if (!std::isfinite(t)) return false;
+    const Vec3 tip = centre[w](t) - R * Vec3(to_tool_at(w, t).row(2).transpose());
+    return std::hypot(tip.x() - x, tip.y() - y) < 1e-3;
+  }
+  const PlanLine& l = plan_line[w];
+  const double dx = x - l.x - tip_offset[w].first, dy = y - l.y - tip_offset[w].second;
+  return std::abs(l.ux * dy - l.uy * dx) < PassageGeometry::kOnAxis &&
+         std::isfinite(l.off);  // a window that moves in plan
 }
 
 std::pair<double, double> PassageSetup::top_speed(std::size_t p, double ta, double tb) const {
@@ -82,33 +170,53 @@ std::pair<double, double> PassageSetup::top_speed(std::size_t p, double ta, doub
   return {h + ch, v + cv};
 }
 
-PassageSetup::Turn PassageSetup::turn_bounds(const ToolPath& path, std::size_t p, double pad) {
+PassageSetup::Turn PassageSetup::turn_bounds(const ToolPath& path, const Window& w, double pad) {
   Turn q;
+  const std::size_t p = w.pass;
   const ToolPath::Pass& pass = path.pass(p);
-  if (!(pass.posture.normal && pass.posture.turns)) return q;
-  q.on = true;
-  q.lambda0 = path.surface().inclination(path.surface_y(p, 0.0));
-  // theta on 1024 steps over the pass and the look beyond it: its first and second differences,
-  // with a margin (theta is smooth: the inclination of a smooth surface under a uniform feed).
+  if (!pass.posture.turns) return q;
+  // theta (or the blend's angular velocity) on 1024 steps over the window and the look beyond
+  // it: first and second differences (or the velocity and its differences), with a margin (both
+  // are smooth: the inclination of a smooth surface under a uniform feed; the blend's frame,
+  // continued at a constant rate).
   constexpr int kSteps = 1024;
-  const double t0 = -pad, dt = (pass.t_end + 2 * pad) / kSteps;
-  double prev = NAN, prev2 = NAN;
-  for (int k = 0; k <= kSteps; ++k) {
-    const double th = path.surface().inclination(path.surface_y(p, t0 + k * dt));
-    if (k >= 1) q.rate = std::max(q.rate, std::abs(th - prev) / dt);
-    if (k >= 2) q.accel = std::max(q.accel, std::abs(th - 2 * prev + prev2) / (dt * dt));
-    prev2 = prev, prev = th;
+  const double t0 = w.t_lo - pad, dt = (w.t_hi - w.t_lo + 2 * pad) / kSteps;
+  if (pass.posture.given) {
+    const Vec3 &a0 = pass.waypoints[w.segment].axis, &a1 = pass.waypoints[w.segment + 1].axis;
+    if (a0 == a1) return q;  // the pass turns elsewhere: this window's frame is fixed
+    q.on = q.blend = true;
+    q.frame = BlendFrame(a0, a1, w.t_lo, w.t_hi);
+    Vec3 prev;
+    for (int k = 0; k <= kSteps; ++k) {
+      Vec3 omega;
+      q.frame.at(t0 + k * dt, omega);
+      q.rate = std::max(q.rate, omega.norm());
+      if (k >= 1) q.accel = std::max(q.accel, (omega - prev).norm() / dt);
+      prev = omega;
+    }
+  } else {
+    if (!pass.posture.normal) return q;
+    q.on = true;
+    q.lambda0 = path.surface().inclination(path.surface_y(p, 0.0));
+    double prev = NAN, prev2 = NAN;
+    for (int k = 0; k <= kSteps; ++k) {
+      const double th = path.surface().inclination(path.surface_y(p, t0 + k * dt));
+      if (k >= 1) q.rate = std::max(q.rate, std::abs(th - prev) / dt);
+      if (k >= 2) q.accel = std::max(q.accel, std::abs(th - 2 * prev + prev2) / (dt * dt));
+      prev2 = prev, prev = th;
+    }
   }
   q.rate = 1.25 * q.rate + 1e-12, q.accel = 1.25 * q.accel + 1e-9;
   return q;
 }
 
-double PassageSetup::turn_angle(std::size_t p, double t) const {
-  return path->surface().inclination(path->surface_y(p, t)) - turn[p].lambda0;
+double PassageSetup::turn_angle(std::size_t w, double t) const {
+  return path->surface().inclination(path->surface_y(window[w].pass, t)) - turn[w].lambda0;
 }
 
-double PassageSetup::turn_rate(std::size_t p, double t) const {
+double PassageSetup::turn_rate(std::size_t w, double t) const {
   const SurfaceShape& surface = path->surface();
+  const std::size_t p = window[w].pass;
   const double y = path->surface_y(p, t), h = 1e-5;  // mm: theta' to about 1e-12 of itself
   return (surface.inclination(y + h) - surface.inclination(y - h)) / (2 * h) *
          (path->feed_speed() * path->pass(p).dy);
@@ -116,45 +224,37 @@ double PassageSetup::turn_rate(std::size_t p, double t) const {
 
 Eigen::Matrix3d PassageSetup::to_tool_at(std::size_t p, double t) const {
   if (!turn[p].on) return to_tool[p];
+  if (turn[p].blend) return turn[p].frame.at(t).transpose();
   const double th = turn_angle(p, t), c = std::cos(th), s = std::sin(th);
   Eigen::Matrix3d r;  // R_x(theta): Q(t)^T = Q(0)^T R_x(theta)
   r << 1, 0, 0, 0, c, -s, 0, s, c;
   return to_tool[p] * r;
 }
 
-double PassageSetup::slowest(const ToolPath& path) {
-  // The feed in plan (the paper's: uniform in Y), or on a pass of cutter-location data its own
-  // (one per pass: a straight line) times the share of it in plan.
-  double v = INFINITY;
-  for (std::size_t p = 0; p < path.passes(); ++p) {
-    const Vec3 f = path.feed_direction(p, 0.0);
-    v = std::min(v, path.pass(p).waypoints.empty() ? path.feed_speed()
-                                                   : path.speed(p, 0.0) * std::hypot(f.x(), f.y()));
-  }
-  return std::max(v, 1e-12);
-}
-
-double PassageSetup::level_time(std::size_t p, double x, double y) const {
-  const double tl = path->pass(p).t_end;
-  // Signed along the pass's feed (a reversed pass feeds towards -Y or -X), so that it grows.
-  const double sign = along_y ? path->pass(p).dy : path->pass(p).dx;
+double PassageSetup::level_time(std::size_t w, double x, double y) const {
+  const double t_lo = window[w].t_lo, t_hi = window[w].t_hi;
+  const ToolPath::Pass& pass = path->pass(window[w].pass);
+  // Signed along the window's feed (a reversed pass feeds towards -Y or -X), so that it grows.
+  const PlanLine& l = plan_line[w];
+  const double sign = along_y ? pass.dy : pass.dx;
   auto along = [&](double t) {
-    const Vec3 c = centre[p].nominal(t);
+    const Vec3 c = centre[w].nominal(t);
+    if (!parallel) return l.ux * (c.x() - x) + l.uy * (c.y() - y);
     return sign * (along_y ? c.y() - y : c.x() - x);
   };
-  double t0 = 0, f0 = along(0), t1 = tl, f1 = along(tl);
-  if (f0 > reach || f1 < -reach) return NAN;  // the pass never comes level with the node
+  double t0 = t_lo, f0 = along(t_lo), t1 = t_hi, f1 = along(t_hi);
+  if (f0 > reach || f1 < -reach) return NAN;  // the window never comes level with the node
   for (int k = 0; k < 8 && f1 != f0; ++k) {
     const double t2 = t1 - f1 * (t1 - t0) / (f1 - f0);
-    t0 = t1, f0 = f1, t1 = std::clamp(t2, 0.0, tl), f1 = along(t1);
+    t0 = t1, f0 = f1, t1 = std::clamp(t2, t_lo, t_hi), f1 = along(t1);
     if (std::abs(f1) < 1e-12) break;
   }
   return t1;
 }
 
-std::pair<double, double> PassageSetup::contact_radii(std::size_t p, double t) const {
+std::pair<double, double> PassageSetup::contact_radii(std::size_t w, double t) const {
   // The contact's polar angle about the axis: |lambda| for a vertical tool.
-  const double lambda = path->contact_angle(p, t);
+  const double lambda = path->contact_angle(window[w].pass, t);
   const double lo = std::max(0.0, lambda - margin * kappa);
   const double hi = std::min(M_PI / 2, lambda + margin * kappa);
   return {R * std::sin(lo), R * std::sin(hi)};
@@ -186,7 +286,7 @@ double PassageGeometry::crossing(int tooth, double t, double& slope, Probe& last
 PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) const {
   if (tilted_) return span_tilted(sa, sb);
   const double a = sa.t, b = sb.t;
-  const double step = s_.path->correction_step(pass_);
+  const double step = s_.path->correction_step(src_);
   const double A = table_.accel_xy(), h = b - a;
   // rho's range, the centre's top speed in plan, and the range [c_lo, c_hi] of the moment of its
   // velocity about the node, q x v (q the node's offset from the axis).
@@ -221,7 +321,7 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) 
     const double ax = x_ - ca.x(), ay = y_ - ca.y(), bx = x_ - cb.x(), by = y_ - cb.y();
     rho_lo = std::max(0.0, norm(ax - u * (cb.x() - ca.x()), ay - u * (cb.y() - ca.y())) - grow);
     rho_hi = std::max(norm(ax, ay), norm(bx, by)) + grow;
-    v = s_.top_speed(pass_, a, b).first;
+    v = s_.top_speed(win_, a, b).first;
     c_hi = rho_hi * v, c_lo = -c_hi;
   }
   Span out = bound_rates(rho_lo, rho_hi, v, c_lo, c_hi, A, knot_inside);
@@ -285,8 +385,15 @@ bool PassageGeometry::lifted(double t, const Vec3& c, const Vec3& v, Vec3& p, Ve
     p = to_tool_ * P, dp = to_tool_ * dP;
     return true;
   }
-  // Turning: p = Q0^T R_x(theta) P, so p' = Q0^T (R_x(theta) P' + theta' R_x'(theta) P).
-  const double th = s_.turn_angle(pass_, t), rate = s_.turn_rate(pass_, t);
+  if (s_.turn[win_].blend) {
+    // Q' = [Omega]x Q, so p = Q^T P has p' = Q^T (P' - Omega x P).
+    Vec3 omega;
+    const Eigen::Matrix3d q = s_.turn[win_].frame.at(t, omega);
+    p = q.transpose() * P, dp = q.transpose() * Vec3(dP - omega.cross(P));
+    return true;
+  }
+  // Along the normal: p = Q0^T R_x(theta) P, so p' = Q0^T (R_x(theta) P' + theta' R_x'(theta) P).
+  const double th = s_.turn_angle(win_, t), rate = s_.turn_rate(win_, t);
   const double cs = std::cos(th), sn = std::sin(th);
   const Vec3 rP(P.x(), cs * P.y() - sn * P.z(), sn * P.y() + cs * P.z());
   const Vec3 rdP(dP.x(), cs * dP.y() - sn * dP.z(), sn * dP.y() + cs * dP.z());
@@ -306,7 +413,7 @@ bool PassageGeometry::lifted(double t, const Vec3& c, const Vec3& v, Vec3& p, Ve
 // length len) and L times the region's own thickness. The turn by the frame is a rotation.
 PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sample& sb) const {
   const double a = sa.t, b = sb.t, h_t = b - a;
-  const double step = s_.path->correction_step(pass_);
+  const double step = s_.path->correction_step(src_);
   const double A = table_.accel_xy();
   const double first_knot = step > 0 ? std::max(0.0, std::floor(a / step) + 1) * step : INFINITY;
   const bool knot_inside = step > 0 && first_knot < b && first_knot <= last_knot();
@@ -322,7 +429,7 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
     const Vec3 mid = 0.5 * (lo + hi);
     ca = table_.nominal(a) + mid, cb = table_.nominal(b) + mid;
     grow = A * h_t * h_t / 8 + 0.5 * norm(hi.x() - lo.x(), hi.y() - lo.y()) + 1e-12;
-    v_plan = s_.top_speed(pass_, a, b).first;
+    v_plan = s_.top_speed(win_, a, b).first;
   }
   const double u = nearest_on_chord(ca, cb);
   const double ax = x_ - ca.x(), ay = y_ - ca.y(), bx = x_ - cb.x(), by = y_ - cb.y();
@@ -409,7 +516,7 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
     // the point gets.
     // A turning frame adds |theta'| R to the point's speed (turn_speed).
     const Vec3 c = table_(t);
-    const double v = s_.plan_line[pass_].speed, plan_hi = norm(x_ - c.x(), y_ - c.y()) + v * half;
+    const double v = s_.plan_line[win_].speed, plan_hi = norm(x_ - c.x(), y_ - c.y()) + v * half;
     if (plan_hi < 0.95 * s_.R) {
       const double L = s_.R / std::sqrt(s_.R2 - plan_hi * plan_hi);
       const double speed = L * v + turn_speed(), moved = speed * half;
@@ -419,12 +526,12 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
         if (rho - 1.01 * moved >= 1.01 * std::sqrt(1 + k1 * k1) * speed / w) return half;
       }
     }
-  } else if (const auto [lo, hi] = s_.gap_rho[pass_]; rho <= hi) {
+  } else if (const auto [lo, hi] = s_.gap_rho[win_]; rho <= hi) {
     if (rho >= lo) return half;
     // Closer in, the same with the lag's slope taken only as far out as the node can get in half
     // a revolution (gap_rho takes it to 0.95 R, where a loxodrome's is twice its tip's), and the
     // axis's least distance also from the pass's line.
-    const double v = s_.plan_line[pass_].speed;
+    const double v = s_.plan_line[win_].speed;
     const double k1 = s_.lag_shape.over(0.0, rho + v * half).k1;
     const double clear = 1.01 * std::sqrt(1 + k1 * k1) * v / w;
     if (std::max(rho - 1.01 * v * half, line_gap_) >= clear) return half;
@@ -479,7 +586,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   };
   const double w = std::abs(s_.omega), min_len = 1e-10 * s_.rev;
   const int first = only < 0 ? 0 : only, last = only < 0 ? s_.teeth - 1 : only;
-  const double step = s_.path->correction_step(pass_);
+  const double step = s_.path->correction_step(src_);
   const double last_knot = this->last_knot();
   // Tooth j's phase is tooth 0's turned by its angle: one probe serves all.
   auto offset = [&](int j) { return s_.tooth_angle[j] - s_.tooth_angle[0]; };
@@ -617,7 +724,7 @@ double PassageGeometry::bisect(int tooth, double lo, double hi, double g_lo) con
 
 double PassageGeometry::walk(double t_b, std::vector<Crossing>& roots, std::uint64_t& visited,
                              double below) const {
-  const double t_end = this->t_end(), rev = s_.rev;
+  const double t_lo = this->t_lo(), t_hi = this->t_hi(), rev = s_.rev;
   double best = INFINITY;
   for (int dir : {+1, -1}) {
     for (int m = (dir > 0 ? 0 : 1); m < 100000; ++m) {
@@ -625,13 +732,13 @@ double PassageGeometry::walk(double t_b, std::vector<Crossing>& roots, std::uint
       // edge all later ones: past the bound's bottom (t_b is within a 20th of a tooth period of
       // it), if the bound is too high there, nothing from here on can lower the node.
       const double lo = t_b + (dir * m - 0.5) * rev, hi = lo + rev;
-      if (hi < 0 || lo > t_end) break;
+      if (hi < t_lo || lo > t_hi) break;
       const double edge = dir > 0 ? lo : hi;
       if (m > 0 && dir * (edge - t_b) >= 0.05 * s_.period && bound(edge) >= std::min(best, below))
         break;
       double limit = std::min(best, below);
       roots.clear();
-      crossings_in(-1, std::max(lo, 0.0), std::min(hi, t_end), limit, roots);  // every tooth
+      crossings_in(-1, std::max(lo, t_lo), std::min(hi, t_hi), limit, roots);  // every tooth
       for (const Crossing& r : roots) {
         const Probe& q = r.q;
         ++visited;

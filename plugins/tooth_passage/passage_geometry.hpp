@@ -20,6 +20,7 @@
 #include <cmath>
 #include <vector>
 
+#include "blend_frame.hpp"
 #include "centre_table.hpp"
 #include "lag_shape.hpp"
 #include "topomill/topography_evaluator.hpp"
@@ -39,14 +40,29 @@ struct PassageSetup {
 
   const ToolPath* path;
   const ToolGeometry* tool;
-  double R, R2, omega, speed;  // speed: the slowest feed along a pass (mm/s)
-  static double slowest(const ToolPath& path);
-  double rev;     // one spindle revolution, s
-  double period;  // one tooth period, s
-  double reach;   // R plus the largest correction: farther across, a pass cannot touch
+  // The walks take a pass in straight stretches, windows: a pass that is one line (every pass
+  // the path models make, and cutter-location passes written along one line) is one window,
+  // [0, t_end]; a bent pass of cutter-location data is one window per run of collinear segments,
+  // [t_k, t_m], whose tables continue its line beyond its ends (Stretch, centre_table.hpp). A
+  // window's envelope over a node has a single minimum, as a line pass's; crossings count only
+  // within their window, where the table is the pass, and together the windows cover the pass.
+  // Every per-pass vector below is per window.
+  struct Window {
+    std::size_t pass;
+    double t_lo, t_hi;
+    std::size_t segment;  // the first waypoint segment in it (0 on a line pass)
+  };
+  std::vector<Window> window;
+  // Whether every window is a whole pass along one of X or Y (the path's feed axis): then a
+  // pass's `line` orders them across, which the row sweep's stopping rule needs.
+  bool parallel;
+  double R, R2, omega, speed;  // speed: the slowest feed in plan along a window (mm/s)
+  double rev;                  // one spindle revolution, s
+  double period;               // one tooth period, s
+  double reach;                // R plus the largest correction: farther across, a pass cannot touch
   double margin, kappa;
   int iterations, teeth;
-  bool along_y;
+  bool along_y;  // parallel: the passes feed along Y (else along X)
   // The run's stop request (may be null): a row checks it at every node, since one row can take
   // seconds on a steep face or at a tiny step-over.
   const std::atomic<bool>* stop = nullptr;
@@ -57,7 +73,22 @@ struct PassageSetup {
   std::vector<CentreTable> centre;  // per pass
   // Per pass with a runout, the spindle's axis (the centre less the runout): the floor's.
   std::vector<CentreTable> spindle_axis;
-  std::vector<double> line;  // per pass: its nominal x (feeding along Y) or y
+  std::vector<double> line;  // parallel: a pass's nominal x (feeding along Y) or y
+  // Per window, its spindle axis's segment in plan from its start to its end, and how far the
+  // centre strays from it (the runout and the correction in plan): nodes farther than R more
+  // than that cannot be cut by it.
+  struct PlanSegment {
+    double ax, ay, bx, by, slack;
+    double distance(double x, double y) const;
+  };
+  std::vector<PlanSegment> segment;
+  // The windows that can cut (x, y), as (key, window) in the key's order: parallel, those whose
+  // line is within `reach`, keyed by that distance across; else those whose segment is within R
+  // and its slack, keyed by a lower bound of every height they can cut there (so that, once the
+  // node's best height is at or below a key, no window from there on can lower it).
+  void near(double x, double y, std::vector<std::pair<double, std::size_t>>& out) const;
+  // Whether (x, y) lies on the line window w's tip follows (PassageGeometry::kOnAxis).
+  bool on_tip_line(std::size_t w, double x, double y) const;
   // Per pass, whether the tool is tilted on it, and then its frame's transpose (rows x_t, y_t, a:
   // fixed over the pass), and where its tip is in plan from the centre (-R a's x and y).
   std::vector<char> tilted;
@@ -68,12 +99,16 @@ struct PassageSetup {
   // and with it the axis and the frame (Q(t) = R_x(-theta) Q(0): docs/model.md). Bounds of
   // |theta'| and |theta''| over the pass (rad/s, rad/s^2), from samples with a margin as the
   // centre's acceleration (CentreTable::accel_xy). `on` false: the frame is fixed.
+  // A window of cutter-location data whose axis turns (`blend`) turns as BlendFrame says, and
+  // rate and accel bound its angular velocity and that velocity's rate.
   struct Turn {
     bool on = false;
     double lambda0 = 0, rate = 0, accel = 0;
+    bool blend = false;
+    BlendFrame frame;
   };
   std::vector<Turn> turn;
-  static Turn turn_bounds(const ToolPath& path, std::size_t p, double pad);
+  static Turn turn_bounds(const ToolPath& path, const Window& w, double pad);
   // theta at t on a turning pass, and theta' (the probes need the first only).
   double turn_angle(std::size_t p, double t) const;
   double turn_rate(std::size_t p, double t) const;
@@ -116,15 +151,17 @@ struct PassageSetup {
   // vertical tool).
   double tip_time(std::size_t p, double x, double y) const {
     double t = level_time(p, x - tip_offset[p].first, y - tip_offset[p].second);
-    // On a turning pass the tip's offset along the feed turns with the frame (across it, R a_x,
-    // it does not: a turn about X): a few steps of the level time at the offset then.
+    // On a turning window the tip's offset turns with the frame (along the normal only along
+    // the feed: a turn about X leaves R a_x as it was): a few steps of the level time at the
+    // offset then.
     for (int k = 0; k < 4 && turn[p].on && std::isfinite(t); ++k) {
       const Vec3 a = to_tool_at(p, t).row(2).transpose();
-      t = level_time(p, x - tip_offset[p].first, y + R * a.y());
+      t = level_time(p, x + R * a.x(), y + R * a.y());
     }
     return t;
   }
-  // The line in plan the tip follows (across the feed): the pass's own for a vertical tool.
+  // Parallel: the line in plan the tip follows (across the feed): the pass's own for a vertical
+  // tool.
   double tip_line(std::size_t p) const {
     return line[p] + (along_y ? tip_offset[p].first : tip_offset[p].second);
   }
@@ -159,27 +196,35 @@ struct Probe {
 
 class PassageGeometry {
  public:
-  PassageGeometry(const PassageSetup& s, std::size_t pass, double x, double y, double rho_lo,
+  // The node (x, y) under window w (PassageSetup::Window) of a pass.
+  PassageGeometry(const PassageSetup& s, std::size_t w, double x, double y, double rho_lo,
                   double rho_hi)
       : s_(s),
-        table_(s.centre[pass]),
-        pass_(pass),
+        table_(s.centre[w]),
+        win_(w),
+        src_(s.window[w].pass),
         x_(x),
         y_(y),
         rho_lo_(rho_lo),
         rho_hi_(rho_hi),
-        phase_(s.path->pass(pass).phase),
-        tilted_(s.tilted[pass] != 0),
-        turning_(s.turn[pass].on),
-        to_tool_(s.to_tool[pass]) {
-    const PassageSetup::PlanLine& l = s.plan_line[pass];
+        phase_(s.path->pass(src_).phase),
+        t_lo_(s.window[w].t_lo),
+        t_hi_(s.window[w].t_hi),
+        tilted_(s.tilted[w] != 0),
+        turning_(s.turn[w].on),
+        to_tool_(s.to_tool[w]) {
+    const PassageSetup::PlanLine& l = s.plan_line[w];
     line_gap_ = std::abs(l.ux * (y - l.y) - l.uy * (x - l.x)) - l.off;
   }
 
-  std::size_t pass() const { return pass_; }
+  std::size_t window() const { return win_; }
   double x() const { return x_; }
   double y() const { return y_; }
-  double t_end() const { return s_.path->pass(pass_).t_end; }
+  // The window's times: crossings count within [t_lo, t_hi] only (beyond, its tables continue
+  // its line, not the pass).
+  double t_lo() const { return t_lo_; }
+  double t_hi() const { return t_hi_; }
+  bool within(double t) const { return t >= t_lo_ && t <= t_hi_; }
 
   // Where the axis is at t and how fast it moves: what probe, span and rate read of the path,
   // taken once for each time (a subdivision's ends are shared by two pieces).
@@ -245,8 +290,8 @@ class PassageGeometry {
   // spindle axis's nominal centre moved by the range's lowest z and as close to the node as the
   // range allows. It has a single minimum, as the ideal envelope.
   double floor_envelope(double t) const {
-    const Vec3 c = s_.runout > 0 ? s_.spindle_axis[pass_].nominal(t) : table_.nominal(t);
-    const Vec3 &lo = s_.shift_lo[pass_], &hi = s_.shift_hi[pass_];
+    const Vec3 c = s_.runout > 0 ? s_.spindle_axis[win_].nominal(t) : table_.nominal(t);
+    const Vec3 &lo = s_.shift_lo[win_], &hi = s_.shift_hi[win_];
     const double dx = x_ - c.x(), dy = y_ - c.y();
     const double ex = dx - std::clamp(dx, lo.x(), hi.x()), ey = dy - std::clamp(dy, lo.y(), hi.y());
     const double r2 = ex * ex + ey * ey, z = c.z() + lo.z();
@@ -290,10 +335,13 @@ class PassageGeometry {
   static bool converged(const Probe& q) { return std::abs(q.g) < 1e-9; }
 
   // The bottom of `f` (envelope or floor_envelope) within [a, b] (golden section to a 20th of
-  // a tooth period).
+  // a tooth period). Where the bracket still holds an end of [a, b] and f is lower there, that
+  // end: a window's envelope can fall all the way to its end (the node lies beyond it), and its
+  // height at the end, not a bracket's width inside, is the window's lowest (the walks' first
+  // test, whether a window can lower the node at all, reads it).
   template <class F>
   double bottom(F f, double a, double b) const {
-    const double ratio = 0.5 * (std::sqrt(5.0) - 1);
+    const double lo = a, hi = b, ratio = 0.5 * (std::sqrt(5.0) - 1);
     double u = b - ratio * (b - a), v = a + ratio * (b - a), fu = f(u), fv = f(v);
     while (b - a > 0.05 * s_.period) {
       if (fu < fv)
@@ -301,14 +349,17 @@ class PassageGeometry {
       else
         a = u, u = v, fu = fv, v = a + ratio * (b - a), fv = f(v);
     }
-    return 0.5 * (a + b);
+    const double mid = 0.5 * (a + b), f_mid = f(mid);
+    if (a == lo && f(lo) < f_mid) return lo;
+    if (b == hi && f(hi) < f_mid) return hi;
+    return mid;
   }
   // The bottom of `f` within the travel of a ball's diameter either side of t0 (the
   // reference's window); of the envelope when no `f` is given.
   template <class F>
   double bottom_near(F f, double t0) const {
     const double span = 2 * s_.R / s_.speed;
-    return bottom(f, std::max(0.0, t0 - span), std::min(t_end(), t0 + span));
+    return bottom(f, std::max(t_lo_, t0 - span), std::min(t_hi_, t0 + span));
   }
   double bottom_near(double t0) const {
     return bottom_near([this](double t) { return envelope(t); }, t0);
@@ -355,13 +406,13 @@ class PassageGeometry {
   // turn): false off the ball.
   bool lifted(double t, const Vec3& c, const Vec3& v, Vec3& p, Vec3& dp) const;
   // The tool frame's transpose at t.
-  Eigen::Matrix3d to_tool(double t) const { return turning_ ? s_.to_tool_at(pass_, t) : to_tool_; }
+  Eigen::Matrix3d to_tool(double t) const { return turning_ ? s_.to_tool_at(win_, t) : to_tool_; }
   // What the frame's turn adds to the ball point's speed in the tool frame (at most |theta'| R:
   // a turn of a point at R from the centre) and to its acceleration, given the point's own speed
   // v there (2 |theta'| v + (|theta''| + theta'^2) R); zero on a fixed frame.
-  double turn_speed() const { return turning_ ? s_.turn[pass_].rate * s_.R : 0.0; }
+  double turn_speed() const { return turning_ ? s_.turn[win_].rate * s_.R : 0.0; }
   double turn_accel(double v) const {
-    const PassageSetup::Turn& q = s_.turn[pass_];
+    const PassageSetup::Turn& q = s_.turn[win_];
     return turning_ ? 2 * q.rate * v + (q.accel + q.rate * q.rate) * s_.R : 0.0;
   }
   // G'(t), the phase's rate (rad/s): the same for every tooth. `dv` is the correction's slope on
@@ -434,9 +485,9 @@ class PassageGeometry {
   // The last correction knot's time (-inf on an ideal path): the correction is linear between
   // knots, so the phase's rate jumps only there.
   double last_knot() const {
-    const double step = s_.path->correction_step(pass_);
+    const double step = s_.path->correction_step(src_);
     return step > 0
-               ? static_cast<double>(s_.path->correction_samples(pass_).values.size() - 1) * step
+               ? static_cast<double>(s_.path->correction_samples(src_).values.size() - 1) * step
                : -INFINITY;
   }
   // Where on the chord from a to b (0 to 1, in plan) the node's foot lies.
@@ -447,8 +498,8 @@ class PassageGeometry {
 
   const PassageSetup& s_;
   const CentreTable& table_;
-  std::size_t pass_;
-  double x_, y_, rho_lo_, rho_hi_, phase_;
+  std::size_t win_, src_;  // the window, and its pass
+  double x_, y_, rho_lo_, rho_hi_, phase_, t_lo_, t_hi_;
   bool tilted_, turning_;
   Eigen::Matrix3d to_tool_;  // the tool frame's transpose when tilted (at t = 0 when turning)
   double line_gap_;  // at most the axis's least distance from the node along the pass (PlanLine)

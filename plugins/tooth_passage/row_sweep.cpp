@@ -22,8 +22,9 @@ RowSweep::RowSweep(const PassageSetup& s)
       later_(static_cast<std::size_t>(s.teeth)),
       before_(static_cast<std::size_t>(s.teeth)) {
   std::iota(by_line_.begin(), by_line_.end(), std::size_t{0});
-  std::sort(by_line_.begin(), by_line_.end(),
-            [&](std::size_t a, std::size_t b) { return s.line[a] < s.line[b]; });
+  if (s.parallel)
+    std::sort(by_line_.begin(), by_line_.end(),
+              [&](std::size_t a, std::size_t b) { return s.line[a] < s.line[b]; });
   for (auto& st : state_) st.roots.resize(static_cast<std::size_t>(s.teeth));
 }
 
@@ -43,17 +44,38 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
     if (s_.stopped()) return;  // the map is discarded
     const double x = xs[i], key = s_.along_y ? x : y;
     exact_used_ = fallback_used_ = false;
-    // Passes nearest first, outwards on both sides.
-    std::ptrdiff_t right =
-        std::lower_bound(by_line_.begin(), by_line_.end(), key,
-                         [&](std::size_t p, double v) { return s_.line[p] < v; }) -
-        by_line_.begin();
-    std::ptrdiff_t left = right - 1;
-    bool left_open = left >= 0, right_open = right < n;
     // Corrected: the passage that was lowest at the node before, solved here first, gives a
     // height to bound all others by from the start (it is a real crossing of this node).
     double best = s_.wiggles ? seed(x, y, counts) : INFINITY;
     const std::size_t seeded = win_pass_;
+    // Window p's lowest passage below `best`, if any; false when it cannot lower the node.
+    auto visit = [&](std::size_t p) {
+      bool can_lower = true;
+      walk_tooth_ = -1;
+      const double h = pass_height(p, x, y, best, can_lower, counts);
+      if (h < best) {
+        best = h, win_pass_ = walk_tooth_ >= 0 ? p : kNone;
+        win_tooth_ = walk_tooth_, win_t_ = walk_t_;
+      }
+      return can_lower;
+    };
+    if (!s_.parallel) {
+      // Windows of bent passes lie every way: each one that can reach the node is asked, lowest
+      // possible first, until none left can go below the best.
+      s_.near(x, y, near_);
+      for (const auto& entry : near_) {
+        if (entry.first >= best) break;
+        visit(entry.second);
+      }
+    }
+    // Passes nearest first, outwards on both sides.
+    std::ptrdiff_t right =
+        s_.parallel ? std::lower_bound(by_line_.begin(), by_line_.end(), key,
+                                       [&](std::size_t p, double v) { return s_.line[p] < v; }) -
+                          by_line_.begin()
+                    : 0;
+    std::ptrdiff_t left = right - 1;
+    bool left_open = s_.parallel && left >= 0, right_open = s_.parallel && right < n;
     int misses[2] = {0, 0};
     while (left_open || right_open) {
       const bool take_left =
@@ -64,15 +86,7 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
       bool& open = take_left ? left_open : right_open;
       int& missed = misses[take_left ? 0 : 1];
       const std::size_t p = by_line_[static_cast<std::size_t>(at)];
-      bool can_lower = std::abs(key - s_.line[p]) < s_.reach;
-      if (can_lower) {
-        walk_tooth_ = -1;
-        const double h = pass_height(p, x, y, best, can_lower, counts);
-        if (h < best) {
-          best = h, win_pass_ = walk_tooth_ >= 0 ? p : kNone;
-          win_tooth_ = walk_tooth_, win_t_ = walk_t_;
-        }
-      }
+      const bool can_lower = std::abs(key - s_.line[p]) < s_.reach && visit(p);
       // The seed's pass is skipped as a matter of course: that is not a side's end.
       missed = can_lower || p == seeded ? 0 : missed + 1;
       at += take_left ? -1 : 1;
@@ -155,9 +169,8 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
 
 template <class T0>
 double RowSweep::with_tip(const PassageGeometry& geo, double h, T0 t0) const {
-  const double key = s_.along_y ? geo.x() : geo.y();
-  const std::size_t p = geo.pass();
-  if (std::abs(key - s_.tip_line(p)) < PassageGeometry::kOnAxis)
+  const std::size_t p = geo.window();
+  if (s_.on_tip_line(p, geo.x(), geo.y()))
     h = std::min(h, geo.tip_height(s_.tilted[p] ? s_.tip_time(p, geo.x(), geo.y()) : t0()));
   return h;
 }
@@ -174,7 +187,7 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
     const double curvature = fp - 2 * f0 + fm;
     if (curvature > 0) {
       const double shift = 0.5 * w * (fm - fp) / curvature;
-      if (std::abs(shift) <= w) t_b = std::clamp(tp + shift, 0.0, geo.t_end());
+      if (std::abs(shift) <= w) t_b = std::clamp(tp + shift, geo.t_lo(), geo.t_hi());
     }
   }
   if (std::isnan(t_b)) {
@@ -196,13 +209,13 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
 // from that zone's edges.
 double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
                       NodeCounts& counts) {
-  const double rev = s_.rev, t_end = geo.t_end(), w = std::abs(s_.omega);
+  const double rev = s_.rev, t_lo = geo.t_lo(), t_hi = geo.t_hi(), w = std::abs(s_.omega);
   const double beyond = 0.05 * s_.period;  // how near t_b may be off the envelope's bottom
   double best = INFINITY;
   std::uint64_t visited = 0;
-  // A crossing's height, if it lies within the pass.
+  // A crossing's height, if it lies within the window.
   auto take = [&](int tooth, double t, const Probe* known) {
-    if (t < 0 || t > t_end) return double(INFINITY);
+    if (!geo.within(t)) return double(INFINITY);
     const Probe q = known ? *known : geo.probe(tooth, t);
     ++visited;
     if (!std::isfinite(q.height)) return double(INFINITY);
@@ -214,7 +227,7 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
     ++counts.exact_windows, exact_used_ = true;
     double limit = std::min(best, best_node);
     roots_.clear();
-    geo.crossings_in(tooth, std::max(lo, 0.0), std::min(hi, t_end), limit, roots_);
+    geo.crossings_in(tooth, std::max(lo, t_lo), std::min(hi, t_hi), limit, roots_);
     for (const auto& r : roots_) take(r.tooth, r.t, &r.q);
   };
   // The zone around t_b solved for all teeth: [zone[0], zone[1]], empty when the phase is proven
@@ -228,7 +241,7 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
       double& edge = zone[side];
       // (On a steep face this can walk a whole pass, revolution by revolution, for one node:
       // a stop request is checked at each.)
-      while (edge > -rev / 2 && edge < t_end + rev / 2 && !s_.stopped() &&
+      while ((dir > 0 ? edge < t_hi + rev / 2 : edge > t_lo - rev / 2) && !s_.stopped() &&
              geo.envelope(edge) < std::min(best, best_node) &&
              !geo.monotone(edge, edge + dir * 1.1 * rev)) {
         exact(-1, std::min(edge, edge + dir * rev), std::max(edge, edge + dir * rev));
@@ -275,7 +288,9 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
       RiseCount rise;
       if (first_root) rise.add(first_height);
       for (int m = 1; m < 100000 && !rise.done(); ++m) {
-        if (t_prev < -rev / 2 || t_prev > t_end + rev / 2) break;
+        // Past the window's end the walk goes (the first root may lie beyond its other end: a
+        // window can be shorter than a revolution).
+        if (dir > 0 ? t_prev > t_hi + rev / 2 : t_prev < t_lo - rev / 2) break;
         // Every later crossing lies beyond t_bound; past the bottom the envelope only rises, so
         // if it is already too high there, no later passage can lower the node. The gap to the
         // next crossing (at most half a revolution) is asked only where that would end the walk.
@@ -352,7 +367,7 @@ double RowSweep::seed(double x, double y, NodeCounts& counts) {
   if (!r) return INFINITY;
   Root solved{};
   Probe q{};
-  if (!solve_root(geo, win_tooth_, r, 0.0, solved, q) || solved.t < 0 || solved.t > geo.t_end() ||
+  if (!solve_root(geo, win_tooth_, r, 0.0, solved, q) || !geo.within(solved.t) ||
       !std::isfinite(q.height) || std::abs(solved.t - r->t) > 0.25 * s_.rev)
     return INFINITY;
   ++counts.passages;
@@ -378,10 +393,10 @@ bool RowSweep::solve_root(const PassageGeometry& geo, int tooth, const Root* fro
       geo.crossing(tooth, from ? from->t + from->drift * (x - from->x) : guess, slope, q);
   if (!PassageGeometry::converged(q)) return false;
   r = Root{t, from && x != from->x ? (t - from->t) / (x - from->x) : 0.0, slope};
-  if (t >= 0 && t <= geo.t_end() && std::isfinite(q.height))
+  if (geo.within(t) && std::isfinite(q.height))
     r.x = x, r.height = q.height,
-    r.fall =
-        fall_rate(geo.pass(), t, q.rho, s_.tilted[geo.pass()] ? geo.distance(t) : q.rho, r.reach);
+    r.fall = fall_rate(geo.window(), t, q.rho, s_.tilted[geo.window()] ? geo.distance(t) : q.rho,
+                       r.reach);
   return true;
 }
 
@@ -393,12 +408,16 @@ double RowSweep::revisit(const PassageGeometry& geo, PassState& st, double best,
                          bool& solved) {
   if (std::isnan(st.stop[0]) || !std::isfinite(best)) return NAN;
   if (geo.floor_envelope(st.stop[0]) < best || geo.floor_envelope(st.stop[1]) < best) return NAN;
-  const double x = geo.x(), rev = s_.rev, t_end = geo.t_end();
+  const double x = geo.x(), rev = s_.rev, t_lo = geo.t_lo(), t_hi = geo.t_hi();
   double low = INFINITY;
   bool any = false;
-  for (int tooth = 0; tooth < s_.teeth; ++tooth)
+  for (int tooth = 0; tooth < s_.teeth; ++tooth) {
+    // Passages beyond the window are solved again too (they count for nothing there, but move
+    // with the node and can come in): where the last walk ended at the window's end rather than
+    // at a stop, the tooth's known passages must still reach past that end, or one not known
+    // may have come into the window.
+    double first = INFINITY, last = -INFINITY;
     for (Root& r : st.roots[static_cast<std::size_t>(tooth)]) {
-      if (r.t < -rev / 4 || r.t > t_end + rev / 4) continue;  // beyond the pass, and stays there
       any = true;
       const double target = std::min(best, low);
       if (stays_above(r, x, target)) continue;
@@ -410,11 +429,15 @@ double RowSweep::revisit(const PassageGeometry& geo, PassState& st, double best,
           !geo.monotone(again.t - rev, again.t + rev))
         return NAN;
       r = again, solved = true;
-      if (r.t >= 0 && r.t <= t_end && std::isfinite(q.height)) {
+      first = std::min(first, r.t), last = std::max(last, r.t);
+      if (geo.within(r.t) && std::isfinite(q.height)) {
         ++counts.passages;
         if (q.over && q.height < low) low = q.height, walk_tooth_ = tooth, walk_t_ = r.t;
       }
     }
+    if ((st.stop[0] < t_lo && !(first <= t_lo)) || (st.stop[1] > t_hi && !(last >= t_hi)))
+      return NAN;
+  }
   return any ? low : NAN;
 }
 
@@ -440,7 +463,8 @@ double RowSweep::fall_rate(std::size_t p, double t, double rho, double plan, dou
   constexpr double kReach = 0.05;  // mm along the row
   // The window either side of t: eight correction steps, or with none (a runout alone) a
   // quarter revolution, within which the next node's root stays.
-  const double step = s_.path->correction_step(p), w = step > 0 ? 8 * step : 0.25 * s_.rev;
+  const double step = s_.path->correction_step(s_.window[p].pass);
+  const double w = step > 0 ? 8 * step : 0.25 * s_.rev;
   const auto [vxy, vz] = s_.top_speed(p, t - w, t + w);
   const double moved = vxy * w + kReach;  // how far the plan offset can go in the window
   const double plan_hi = plan + moved;
@@ -471,7 +495,7 @@ double RowSweep::fall_rate(std::size_t p, double t, double rho, double plan, dou
 // since (fall_rate) is not solved again.
 double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, double t_b,
                                 double best_node, NodeCounts& counts, bool& irregular) {
-  const double rev = s_.rev, t_end = geo.t_end(), x = geo.x();
+  const double rev = s_.rev, t_lo = geo.t_lo(), t_hi = geo.t_hi(), x = geo.x();
   const double beyond = 0.05 * s_.period;  // how near t_b may be off the floor's bottom
   double best = INFINITY;
   std::uint64_t visited = 0;
@@ -490,7 +514,7 @@ double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, doubl
     // revolutions away, outside the stops, which ended the walk at once) is irregular.
     if (!solve_root(geo, tooth, match, guess, r, q) || std::abs(r.t - guess) > reach) return false;
     t = r.t;
-    if (t >= 0 && t <= t_end && std::isfinite(q.height)) {
+    if (geo.within(t) && std::isfinite(q.height)) {
       ++visited;
       if (q.over && q.height < best) best = q.height, walk_tooth_ = tooth, walk_t_ = t;
     }
@@ -513,7 +537,7 @@ double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, doubl
     const double dir = side ? 1.0 : -1.0;
     double& stop = st.stop[side];
     if (std::isnan(stop) || dir * (stop - t_b) < beyond) stop = t_b + dir * beyond;
-    while (geo.bound(stop) < target && dir * (stop - t_b) < t_end + rev && !s_.stopped())
+    while (geo.bound(stop) < target && dir * (stop - t_b) < t_hi - t_lo + rev && !s_.stopped())
       stop += dir * 0.5 * rev;
     while (dir * (stop - dir * 0.5 * rev - t_b) >= beyond &&
            geo.bound(stop - dir * 0.5 * rev) >= target)
@@ -526,8 +550,12 @@ double RowSweep::walk_corrected(const PassageGeometry& geo, PassState& st, doubl
       std::vector<Root>& out = side ? later_[j] : before_[j];
       double t_prev = first[j];
       for (int m = 1; m < 100000 && !s_.stopped(); ++m) {
+        // Past the window's end (the first passage may lie beyond its other end): every
+        // passage from the first to one beyond the end is visited, each proven the next of the
+        // last (next_crossing), so that none inside is passed over (a node near the axis is
+        // crossed again within a revolution, which no step of one revolution would see).
+        if (dir > 0 ? t_prev > t_hi : t_prev < t_lo) break;
         const double guess = t_prev + dir * rev;
-        if (guess < -rev / 2 || guess > t_end + rev / 2) break;
         // Every later passage lies beyond the next one's least gap (at most half a revolution).
         if (dir * (t_prev + dir * 0.5 * rev - st.stop[side]) >= 0 &&
             dir * (t_prev + dir * geo.next_gap(t_prev, geo.axis_distance(t_prev), dir) -

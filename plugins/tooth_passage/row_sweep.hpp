@@ -80,7 +80,8 @@ class RowSweep {
   double fall_rate(std::size_t pass, double t, double rho, double plan, double& reach) const;
 
   const PassageSetup& s_;
-  std::vector<std::size_t> by_line_;  // passes sorted by their line
+  std::vector<std::size_t> by_line_;                  // parallel: passes sorted by their line
+  std::vector<std::pair<double, std::size_t>> near_;  // else: the windows near the node
   std::vector<PassState> state_;
   std::vector<Root> fresh_;
   std::vector<std::vector<Root>> later_, before_;  // per tooth, for walk_corrected

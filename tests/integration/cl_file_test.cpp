@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "support/brute_force.hpp"
@@ -253,26 +254,48 @@ TEST_CASE("CL data's own feed sets the chip: twice the scene's feed is the raste
   CHECK(largest_difference(raster.raw, cl.raw) < 1e-9);
 }
 
-TEST_CASE("the Z-map cuts CL passes in any direction where the brute force does", "[cl]") {
-  // The raster turned by 30 deg in plan on a plate: parallel passes 0.7 mm long, a step-over
-  // (0.06 mm) apart, zigzag, the middle one bending 0.2 mm sideways at its far end (their ends'
-  // imprints, steep walls where the Z-map's nearest node errs by the wall's slope times half a
-  // cell, stay off the patch). No pass along X or Y. The brute force follows the same centre
-  // (ToolPath) with its own edge and crossings.
-  const std::string file = cl_dir() + "/turned.csv";
+// The raster turned by 30 deg in plan on a plate: parallel passes 0.7 mm long, a step-over
+// (0.06 mm) apart, zigzag, the middle one bending 0.2 mm sideways at its far end (their ends'
+// imprints, steep walls where the Z-map's nearest node errs by the wall's slope times half a
+// cell, stay off the patch). No pass along X or Y.
+// `axis`: the tool axis at a point (x, y), written as the i, j, k columns; none: vertical.
+using AxisAt = std::function<topomill::Vec3(double x, double y)>;
+
+std::string turned_raster_file(const std::string& name, const AxisAt& axis = nullptr) {
+  const std::string file = cl_dir() + "/" + name + ".csv";
   const double a = 30 * M_PI / 180, c = std::cos(a), s = std::sin(a);
-  {
-    std::ofstream out(file);
-    out << "# the raster turned by 30 deg about (0.01, 0)\nx,y,z\n";
-    out.precision(17);
-    for (int k = -3; k <= 3; ++k) {
-      const double d = k * 0.06, e = k % 2 == 0 ? 0.35 : -0.35;  // across, along
-      out << 0.01 - d * s - e * c << "," << d * c - e * s << "," << 0.98 << "\n"
-          << 0.01 - d * s + e * c << "," << d * c + e * s << "," << 0.98 << "\n";
-      if (k == 0) out << 0.01 + e * c - 0.2 * s << "," << e * s + 0.2 * c << "," << 0.98 << "\n";
-      out << "\n";
-    }
+  std::ofstream out(file);
+  out << "# the raster turned by 30 deg about (0.01, 0)\n" << (axis ? "x,y,z,i,j,k\n" : "x,y,z\n");
+  out.precision(17);
+  auto point = [&](double x, double y) {
+    out << x << "," << y << "," << 0.98;
+    if (axis) out << "," << axis(x, y).x() << "," << axis(x, y).y() << "," << axis(x, y).z();
+    out << "\n";
+  };
+  for (int k = -3; k <= 3; ++k) {
+    const double d = k * 0.06, e = k % 2 == 0 ? 0.35 : -0.35;  // across, along
+    point(0.01 - d * s - e * c, d * c - e * s);
+    point(0.01 - d * s + e * c, d * c + e * s);
+    if (k == 0) point(0.01 + e * c - 0.2 * s, e * s + 0.2 * c);
+    out << "\n";
   }
+  return file;
+}
+
+// A spiral about (0.3, 0) growing a step-over (0.06 mm) a turn, three turns: through a patch
+// about the origin at radii 0.24, 0.30 and 0.36 mm, its chords turning by `step` deg.
+template <class Point>
+void spiral(Point point, int step) {
+  for (int k = 0; k <= 3 * 360 / step; ++k) {
+    const double th = k * step * M_PI / 180, r = 0.18 + 0.06 * th / (2 * M_PI);
+    point(0.3 + r * std::cos(th + M_PI), r * std::sin(th + M_PI));
+  }
+}
+
+TEST_CASE("the Z-map cuts CL passes in any direction where the brute force does", "[cl]") {
+  // The brute force follows the same centre (ToolPath) with its own edge and crossings.
+  const std::string file = turned_raster_file("turned");
+  const double a = 30 * M_PI / 180, c = std::cos(a), s = std::sin(a);
   const std::string toml = scene(kPlate, cl_path(file), 0.004, 0.12, "centre = [0.01, 0.0]");
   const auto m = prepared(toml, {"evaluator.plugin=zmap"});
   REQUIRE(m.layout.path->feed_axis() == topomill::ToolPath::FeedAxis::None);
@@ -303,8 +326,12 @@ TEST_CASE("a 5-axis raster written as CL points is that raster to the points' ch
   // with their axes every 4 um of travel, the centre between points is the chord of the raster's
   // arc (sagging (4 um)^2 / 8 / 21 mm, 1e-10 mm) and the axis the normalised blend: the maps
   // agree to far below the Z-map's grid error (the two evaluate the same time steps only where
-  // the passes' times agree).
-  const std::vector<std::string> set{"evaluator.plugin=zmap"};
+  // the passes' times agree). tooth_passage takes the two by different routes: the raster's
+  // passes whole, their frame turning about X with the inclination; the CL passes a window per
+  // pair of points, each frame the blend of the two axes (BlendFrame).
+  const std::string evaluator = GENERATE(as<std::string>{}, "zmap", "tooth_passage");
+  INFO(evaluator);
+  const std::vector<std::string> set{"evaluator.plugin=" + evaluator};
   const std::string raster_scene =
       scene(kArc, "plugin = 'raster'\nposture = 'normal'\nlead = 10\ntilt = 5", 0.004, 0.06,
             "lambda = 30.0");
@@ -332,19 +359,146 @@ TEST_CASE("a 5-axis raster written as CL points is that raster to the points' ch
   CHECK(apart < apart_limit);
 }
 
-TEST_CASE("CL data that tooth_passage cannot follow are refused naming zmap", "[cl]") {
-  const std::string file = cl_dir() + "/bent.csv";
+TEST_CASE("tooth_passage cuts bent CL passes as the brute force does, at every node",
+          "[cl][bent]") {
+  // Passes in any direction that turn at their points: the turned raster's bent middle pass
+  // (a corner of 22 deg inside the patch's reach), a vertex of 90 deg right over the patch, and
+  // a spiral of 5 deg chords (a radial-then-spiral path's kind). tooth_passage takes each
+  // straight stretch as its own window; the brute force knows no windows: it follows the pass
+  // (ToolPath) through its corners. Every node, those next to the lines included, to 1 nm.
+  // Vertical, with a 4 um runout, tilted (a fixed axis 12 deg off vertical from the data's i, j,
+  // k; on the turned raster only, the others having the next) and turning (an axis 4 to 17 deg
+  // off vertical, leaning a different way at every point: 5-axis data), by both walks. (The
+  // brute force takes 3 to 23 s a case: 80 s in all.)
+  const std::string kind = GENERATE(as<std::string>{}, "turned", "vertex", "spiral");
+  const std::string variant =
+      GENERATE(as<std::string>{}, "vertical", "runout", "tilted", "turning");
+  if (variant == "tilted" && kind != "turned") return;
+  AxisAt axis;
+  if (variant == "tilted")
+    axis = [](double, double) { return topomill::Vec3(std::sin(0.21), 0, std::cos(0.21)); };
+  if (variant == "turning")
+    axis = [](double x, double y) {
+      const double b = 0.15 + 0.15 * x, phi = 3 * y;
+      return topomill::Vec3(std::sin(b) * std::cos(phi), std::sin(b) * std::sin(phi), std::cos(b));
+    };
+  std::string file;
+  if (kind == "turned") {
+    file = turned_raster_file("turned_" + variant, axis);
+  } else {
+    file = cl_dir() + "/" + kind + "_" + variant + ".csv";
+    std::ofstream out(file);
+    out.precision(17);
+    out << (axis ? "x,y,z,i,j,k\n" : "x,y,z\n");
+    auto point = [&](double x, double y) {
+      out << x << "," << y << "," << 0.98;
+      if (axis) out << "," << axis(x, y).x() << "," << axis(x, y).y() << "," << axis(x, y).z();
+      out << "\n";
+    };
+    if (kind == "vertex") {
+      // Two passes a step-over apart, each in along one diagonal and out along the other.
+      for (double d : {0.0, 0.06}) {
+        point(-0.4, -0.4 + d), point(0.0, d), point(0.4, -0.4 + d);
+        out << "\n";
+      }
+    } else {
+      spiral(point, 5);
+    }
+  }
+  INFO(kind << ", " << variant);
+  const std::string extra = variant == "runout" ? "\n[runout]\noffset = 0.004\nangle = 30\n" : "";
+  const std::string toml = scene(kPlate, cl_path(file), 0.004, 0.06, "centre = [0.0, 0.0]") + extra;
+  const auto m = prepared(toml);
+  REQUIRE(m.layout.path->feed_axis() == topomill::ToolPath::FeedAxis::None);
+  const topomill::Grid g = run_scene(toml).raw.grid;
+  std::vector<double> brute(g.size());
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i)
+      brute[g.index(i, j)] = testing::brute_force_height(*m.tool, *m.layout.path, g.x(i), g.y(j));
+  // The passes did cut the patch: below the uncut plate (z = 0) by most of the depth.
+  CHECK(*std::max_element(brute.begin(), brute.end()) < -0.01);
+  for (const std::string walk : {"row", "node"}) {
+    const auto r = run_scene(toml, {"evaluator.walk=" + walk});
+    double worst = 0;
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < brute.size(); ++k)
+      if (std::abs(r.raw.z[k] - brute[k]) > worst) worst = std::abs(r.raw.z[k] - brute[k]), at = k;
+    INFO("walk " << walk << ": largest difference from the brute force " << worst * 1e6
+                 << " nm at node " << at << " of " << g.nx << " x " << g.ny);
+    CHECK(worst < 1e-6);
+  }
+}
+
+TEST_CASE("tooth_passage cuts bent CL passes with vibration and deflection as the brute force does",
+          "[cl][bent]") {
+  // The paper's tool and cut with its vibration and deflection (each pass's correction from the
+  // force along the bent path), on two passes a step-over apart that turn by 90 deg over the
+  // patch, vertical and with a 5-axis axis turning at every point; by both walks, to 1 nm at
+  // every node. The corrected walk bounds passages by the floor of each window.
+  const std::string variant = GENERATE(as<std::string>{}, "vertical", "turning");
+  INFO(variant);
+  const std::string file = cl_dir() + "/vertex_effects_" + variant + ".csv";
   {
     std::ofstream out(file);
-    out << "x,y,z\n-0.2,-0.2,0.98\n0,0,0.98\n0.2,-0.2,0.98\n";
+    out.precision(17);
+    const bool turning = variant == "turning";
+    out << (turning ? "x,y,z,i,j,k\n" : "x,y,z\n");
+    auto point = [&](double x, double y) {
+      out << x << "," << y << "," << 4.9;
+      const double b = 0.1 + 0.1 * x, phi = 2 * y;
+      if (turning)
+        out << "," << std::sin(b) * std::cos(phi) << "," << std::sin(b) * std::sin(phi) << ","
+            << std::cos(b);
+      out << "\n";
+    };
+    for (double d : {0.0, 0.3}) {
+      point(-1.5, -1.5 + d), point(0.0, d), point(1.5, -1.5 + d);
+      out << "\n";
+    }
   }
-  try {
-    prepared(scene(kPlate, cl_path(file), 0.004, 0.05, "centre = [0, 0]"));
-    FAIL("accepted");
-  } catch (const topomill::InputError& e) {
-    INFO(e.what());
-    CHECK(std::string(e.what()).find("expected evaluator.plugin = \"zmap\"") != std::string::npos);
+  const std::string toml = scene(kPlate, cl_path(file), 0.01, 0.06, "centre = [0.0, 0.0]", true) +
+                           testing::dynamics_tables();
+  const auto m = prepared(toml);  // its tool; the run's path carries the corrections
+  const auto first = run_scene(toml);
+  REQUIRE(first.layout.path->corrected());
+  REQUIRE(first.peak_correction > 1e-4);
+  const topomill::Grid g = first.raw.grid;
+  std::vector<double> brute(g.size());
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i)
+      brute[g.index(i, j)] =
+          testing::brute_force_height(*m.tool, *first.layout.path, g.x(i), g.y(j));
+  for (const std::string walk : {"row", "node"}) {
+    const auto r = run_scene(toml, {"evaluator.walk=" + walk});
+    double worst = 0;
+    for (std::size_t k = 0; k < brute.size(); ++k)
+      worst = std::max(worst, std::abs(r.raw.z[k] - brute[k]));
+    INFO("walk " << walk << ": largest difference from the brute force " << worst * 1e6 << " nm");
+    CHECK(worst < 1e-6);
   }
+}
+
+TEST_CASE("on windows shorter than a revolution the corrected row walk is the node walk",
+          "[cl][bent]") {
+  // The paper's tool, cut and effects along a spiral of 1 deg chords (4 to 6 um: a fortieth of
+  // a revolution): each window is crossed by a tooth once or not at all, and the corrected
+  // walk's first passage often lies beyond the window's other end. The row walk must still give
+  // the node walk's heights, to round-off.
+  const std::string file = cl_dir() + "/fine_spiral.csv";
+  {
+    std::ofstream out(file);
+    out.precision(17);
+    out << "x,y,z\n";
+    spiral([&](double x, double y) { out << x << "," << y << "," << 4.9 << "\n"; }, 1);
+  }
+  const std::string toml = scene(kPlate, cl_path(file), 0.005, 0.05, "centre = [0.0, 0.0]", true) +
+                           testing::dynamics_tables();
+  const auto row = run_scene(toml, {"evaluator.walk=row"});
+  REQUIRE(row.peak_correction > 1e-4);
+  const auto node = run_scene(toml, {"evaluator.walk=node"});
+  const double apart = largest_difference(row.raw, node.raw);
+  INFO("largest difference " << apart * 1e6 << " nm");
+  CHECK(apart < 1e-9);
 }
 
 TEST_CASE("the shipped CL raster is configs/examples/plate.toml again, to the bit", "[cl]") {

@@ -124,24 +124,33 @@ TEST_CASE("the row walk gives the node walk's heights", "[fast][reference]") {
   // walk = "row" follows passages from node to node and ends walks on bounds; walk = "node" is
   // the reference that solves each node from scratch. They must agree to the crossings'
   // round-off (1e-11 mm) everywhere: at lambda 0 (the tool's tip, handed to the reference), on
-  // the paper's slope, steep, stepping across, another edge with four teeth, and on a vibrating
-  // and deflected path.
+  // the paper's slope, steep, stepping across, another edge with four teeth, on a vibrating
+  // and deflected path, and along the shipped radial-then-spiral CL path (bent passes in
+  // straight windows of a tenth of a tooth period, beyond whose ends most nodes lie).
   struct Case {
     const char* name;
     double lambda;
     std::vector<std::string> overrides;
     std::string extra;
+    std::string whole = "";  // a whole scene instead of the paper's patch
   };
-  const Case c = GENERATE_COPY(Case{"tip", 0.0, {}, ""}, Case{"paper slope", 30.0, {}, ""},
-                               Case{"steep", 60.0, {}, ""},
-                               Case{"across", 30.0, {"path.plugin=raster_across"}, ""},
-                               Case{"four teeth, constant lead",
-                                    30.0,
-                                    {"tool.plugin=ball_end_constant_lead", "tool.teeth=4"},
-                                    ""},
-                               Case{"vibration and deflection", 30.0, {}, kDynamics});
+  const Case c = GENERATE_COPY(
+      Case{"tip", 0.0, {}, ""}, Case{"paper slope", 30.0, {}, ""}, Case{"steep", 60.0, {}, ""},
+      Case{"across", 30.0, {"path.plugin=raster_across"}, ""},
+      Case{"four teeth, constant lead",
+           30.0,
+           {"tool.plugin=ball_end_constant_lead", "tool.teeth=4"},
+           ""},
+      Case{"vibration and deflection", 30.0, {}, kDynamics},
+      Case{"radial then spiral (CL)",
+           0.0,
+           {"path.file=" + source_dir() + "/configs/examples/cl/radial_spiral.cl",
+            "region.size=[1.0,1.0]", "region.spacing=0.02"},
+           "",
+           read_file(source_dir() + "/configs/examples/cl_radial_spiral.toml")});
   INFO(c.name);
-  const std::string scene = paper_scene(kConvex, c.lambda, 0.35, 0.35, 0.01) + c.extra;
+  const std::string scene =
+      c.whole.empty() ? paper_scene(kConvex, c.lambda, 0.35, 0.35, 0.01) + c.extra : c.whole;
   auto with = [&](const char* walk) {
     auto o = c.overrides;
     o.push_back("evaluator.plugin=tooth_passage");

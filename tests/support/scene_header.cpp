@@ -15,7 +15,13 @@ SceneHeader read_scene_header(const std::string& relative) {
   std::string line;
   while (std::getline(in, line) && line.rfind("#", 0) == 0) {
     auto value = [&](const std::string& tag) { return line.substr(tag.size()); };
-    if (line.rfind("# args: ", 0) == 0) e.args = value("# args: ");
+    // `{fixture:NAME}` in the arguments: that fixture plugin's directory (tests/fixtures).
+    if (line.rfind("# args: ", 0) == 0) {
+      e.args = value("# args: ");
+      std::smatch m;
+      while (std::regex_search(e.args, m, std::regex("\\{fixture:([a-z_]+)\\}")))
+        e.args = m.prefix().str() + "'" + fixture_dir(m[1].str()) + "'" + m.suffix().str();
+    }
     if (line.rfind("# expect-exit: ", 0) == 0) e.exit_code = std::stoi(value("# expect-exit: "));
     if (line.rfind("# expect: ", 0) == 0)
       e.messages.push_back(
