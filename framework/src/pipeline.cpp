@@ -169,13 +169,12 @@ std::function<bool(const Vec3&)> material_test(const ToolPath& path, std::size_t
 std::function<bool(const Vec3&)> material_test(const ToolPath& path, const SweptPath& swept,
                                                std::size_t p, const CutState& st, double R) {
   const Vec3 centre = path.nominal_centre(p, st.time);
-  const double recent = 2 * R / path.speed(p, st.time);
-  auto cut = swept.before(p, st.time, recent, centre, 2 * R);
+  const double until = st.time - 2 * R / path.speed(p, st.time);
   const SurfaceShape* surface = &path.surface();
-  return [=, cut = std::move(cut)](const Vec3& offset) {
+  const SweptPath* before = &swept;  // outlives every state (apply_effects)
+  return [=](const Vec3& offset) {
     const Vec3 point = centre + offset;
-    for (const auto& s : cut)
-      if (SweptPath::distance(point, s.first, s.second) < R) return false;
+    if (before->swept(p, until, point, R)) return false;
     return surface->normal_residual(point.y(), point.z(), 0.0) < 0;
   };
 }
@@ -206,6 +205,11 @@ static void apply_effects(const Scene& scene, const Prepared& m, unsigned thread
   const double dt = effect_time_step(m);
   result.dynamics_step = dt;
 
+  // Cutter-location data's swept path, which the states' material tests ask (kept as long as
+  // they are: deformation models see the states too).
+  std::unique_ptr<SweptPath> swept;
+  for (std::size_t p = 0; p < path.passes() && !swept; ++p)
+    if (!path.pass(p).waypoints.empty()) swept = std::make_unique<SweptPath>(path);
   std::vector<std::vector<CutState>> states(path.passes());
   std::vector<std::vector<CuttingForce>> forces(path.passes());
   clock.run("force", [&] {
@@ -219,9 +223,6 @@ static void apply_effects(const Scene& scene, const Prepared& m, unsigned thread
       states[p].resize(n), forces[p].resize(n);
       for (std::size_t k = 0; k < n; k += kBlock) blocks.emplace_back(p, k);
     }
-    std::unique_ptr<SweptPath> swept;  // only for cutter-location data
-    for (std::size_t p = 0; p < path.passes() && !swept; ++p)
-      if (!path.pass(p).waypoints.empty()) swept = std::make_unique<SweptPath>(path);
     const double fz = cut.number("feed_per_tooth"), ap = cut.number("depth_of_cut"),
                  ae = cut.number("stepover");
     auto sample = [&](std::size_t p, std::size_t k) {

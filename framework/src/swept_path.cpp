@@ -25,23 +25,21 @@ double SweptPath::distance(const Vec3& x, const Vec3& a, const Vec3& b) {
   return (x - a - u * d).norm();
 }
 
-std::vector<std::pair<Vec3, Vec3>> SweptPath::before(std::size_t p, double t, double recent,
-                                                     const Vec3& centre, double reach) const {
-  std::vector<std::pair<Vec3, Vec3>> out;
+bool SweptPath::swept(std::size_t p, double until, const Vec3& x, double R) const {
   for (const Chunk& c : chunks_) {
     const std::size_t pass = segments_[c.first].pass;
     if (pass > p) break;  // segments are in pass order
-    const Vec3 gap = (c.lo - centre).cwiseMax(centre - c.hi).cwiseMax(0.0);
-    if (gap.norm() >= reach) continue;
+    const Vec3 gap = (c.lo - x).cwiseMax(x - c.hi).cwiseMax(0.0);
+    if (gap.squaredNorm() >= R * R) continue;
     for (std::size_t i = c.first; i < c.last; ++i) {
       const Segment& s = segments_[i];
-      // On pass p, only what the centre left before the trail's start (segments are in time
-      // order: the rest of the chunk is later still).
-      if (s.pass == p && s.t_end > t - recent) break;
-      if (distance(centre, s.a, s.b) < reach) out.emplace_back(s.a, s.b);
+      // On pass p, only what the centre left before `until` (segments are in time order: the
+      // rest of the chunk is later still).
+      if (s.pass == p && s.t_end > until) break;
+      if (distance(x, s.a, s.b) < R) return true;
     }
   }
-  return out;
+  return false;
 }
 
 }  // namespace topomill

@@ -4,7 +4,6 @@
 // every earlier pass counts, and the same pass's own earlier loops.
 #pragma once
 
-#include <utility>
 #include <vector>
 
 #include "topomill/tool_path.hpp"
@@ -15,12 +14,13 @@ class SweptPath {
  public:
   explicit SweptPath(const ToolPath& path);
 
-  // The segments of the nominal centre's path (ends a, b) that come within `reach` of `centre`
-  // and were travelled before pass p's time t less `recent` (the tool's own trail, which the
-  // force model's chip already leaves out), on pass p or an earlier one. Edge points within R of
-  // one of them were cut away.
-  std::vector<std::pair<Vec3, Vec3>> before(std::size_t p, double t, double recent,
-                                            const Vec3& centre, double reach) const;
+  // Whether x lies within R of a segment of the nominal centre's path travelled before pass p's
+  // time `until` (the tool's own trail, which the force model's chip already leaves out, is
+  // after it), on pass p or an earlier one: then the ball swept it away. Asked per edge point,
+  // so nothing is kept per moment (a force sample's test holds only where and when it is: a
+  // list of the segments near each sample took 8 GB for the radial-then-spiral example with
+  // effects), and chunks whose box lies R or more away are passed over whole.
+  bool swept(std::size_t p, double until, const Vec3& x, double R) const;
 
   // Distance from x to the segment [a, b].
   static double distance(const Vec3& x, const Vec3& a, const Vec3& b);

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
@@ -31,19 +32,43 @@ struct Stretch {
   Vec3 v_lo = Vec3::Zero(), v_hi = Vec3::Zero();
 };
 
+// A pass's correction samples indexed for range queries: per axis, and its pieces' speeds in
+// plan and along z. One per pass, shared by the tables of its windows (each would otherwise
+// hold its own: 8 GB for the radial-then-spiral example's 2 735 windows with effects).
+struct CorrectionIndex {
+  RangeTable range[3];
+  RangeTable speed[2];
+  explicit CorrectionIndex(const ToolPath::Correction& c) {
+    const std::size_t n = c.values.size();
+    if (n == 0) return;
+    for (int i = 0; i < 3; ++i)
+      range[i] = RangeTable(n, [&](std::size_t k) { return c.values[k][i]; });
+    if (n < 2) return;
+    for (int i = 0; i < 2; ++i)
+      speed[i] = RangeTable(n - 1, [&](std::size_t k) { return piece_speed(c, k, i == 0); });
+  }
+  // Piece k's speed in plan or along z.
+  static double piece_speed(const ToolPath::Correction& c, std::size_t k, bool plan) {
+    const Vec3 d = (c.values[k + 1] - c.values[k]) / c.dt;
+    return plan ? std::hypot(d.x(), d.y()) : std::abs(d.z());
+  }
+};
+
 class CentreTable {
  public:
   // Covers [t_lo, t_hi]; outside it the path is asked directly. `spindle_axis`: the nominal
   // centre less the runout (the spindle's axis: smooth, where the centre circles about it), for
-  // the walks' floor.
+  // the walks' floor. `index`: the pass's correction index, if one was built (else its own).
   CentreTable(const ToolPath& path, std::size_t pass, double t_lo, double t_hi, double tolerance,
-              bool spindle_axis = false, const Stretch& stretch = Stretch{})
+              bool spindle_axis = false, const Stretch& stretch = Stretch{},
+              std::shared_ptr<const CorrectionIndex> index = nullptr)
       : path_(&path),
         pass_(pass),
         correction_(&path.correction_samples(pass)),
         spindle_axis_(spindle_axis),
-        stretch_(stretch) {
-    index_correction();
+        stretch_(stretch),
+        index_(index ? std::move(index)
+                     : std::make_shared<const CorrectionIndex>(path.correction_samples(pass))) {
     double dt = std::max((t_hi - t_lo) / 16, 1e-9);
     // At most 2^22 knots (200 MB): a smooth path needs far fewer, and a path that is not (NaN
     // off the surface's end) must not take all memory on the way to the refusal.
@@ -110,22 +135,27 @@ class CentreTable {
   // beyond them, it lies within the range of the samples from the one at or before ta to the one
   // at or after tb. Zero when there is none.
   std::pair<Vec3, Vec3> correction_box(double ta, double tb) const {
-    if (range_[0].empty()) return {Vec3::Zero(), Vec3::Zero()};
+    if (index_->range[0].empty()) return {Vec3::Zero(), Vec3::Zero()};
     const auto [k0, k1] = knots(std::floor(ta / correction_->dt), std::ceil(tb / correction_->dt),
                                 correction_->values.size() - 1);
     Vec3 lo, hi;
     for (int i = 0; i < 3; ++i)
-      std::tie(lo[i], hi[i]) = range_[i].over(k0, k1, [&](std::size_t k) { return sample(k, i); });
+      std::tie(lo[i], hi[i]) =
+          index_->range[i].over(k0, k1, [&](std::size_t k) { return sample(k, i); });
     return {lo, hi};
   }
   // The correction's top speeds over [ta, tb], in plan and along z (mm/s): its pieces' slopes.
   std::pair<double, double> correction_speed(double ta, double tb) const {
-    if (speed_[0].empty()) return {0.0, 0.0};
+    if (index_->speed[0].empty()) return {0.0, 0.0};
     std::size_t k0, k1;  // (not a structured binding: C++17 lambdas cannot capture one)
     std::tie(k0, k1) = knots(std::floor(ta / correction_->dt), std::floor(tb / correction_->dt),
                              correction_->values.size() - 2);
     auto top = [&](int i) {
-      return speed_[i].over(k0, k1, [&](std::size_t k) { return piece_speed(k, i == 0); }).second;
+      return index_->speed[i]
+          .over(
+              k0, k1,
+              [&](std::size_t k) { return CorrectionIndex::piece_speed(*correction_, k, i == 0); })
+          .second;
     };
     return {top(0), top(1)};
   }
@@ -165,21 +195,8 @@ class CentreTable {
     return {static_cast<std::size_t>(std::clamp(k0, 0.0, top)),
             static_cast<std::size_t>(std::clamp(std::max(k0, k1), 0.0, top))};
   }
-  // The correction's sample k along one axis, and its piece k's speed in plan or along z.
+  // The correction's sample k along one axis.
   double sample(std::size_t k, int axis) const { return correction_->values[k][axis]; }
-  double piece_speed(std::size_t k, bool plan) const {
-    const Vec3 d = (correction_->values[k + 1] - correction_->values[k]) / correction_->dt;
-    return plan ? std::hypot(d.x(), d.y()) : std::abs(d.z());
-  }
-  void index_correction() {
-    const std::size_t n = correction_->values.size();
-    if (n == 0) return;
-    for (int i = 0; i < 3; ++i)
-      range_[i] = RangeTable(n, [&](std::size_t k) { return sample(k, i); });
-    if (n < 2) return;
-    for (int i = 0; i < 2; ++i)
-      speed_[i] = RangeTable(n - 1, [&](std::size_t k) { return piece_speed(k, i == 0); });
-  }
   void build(double t_lo, double t_hi, double dt) {
     t0_ = t_lo - 2 * dt;
     inv_dt_ = 1 / dt;
@@ -231,8 +248,7 @@ class CentreTable {
   std::vector<Vec3> knots_;
   using Cubic = std::array<Vec3, 4>;  // coefficients of s^0 .. s^3
   std::vector<Cubic> cubic_;
-  RangeTable range_[3];  // the correction's samples, per axis
-  RangeTable speed_[2];  // its pieces' speeds, in plan and along z
+  std::shared_ptr<const CorrectionIndex> index_;
 };
 
 }  // namespace topomill::plugins

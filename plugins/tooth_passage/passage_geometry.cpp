@@ -74,8 +74,11 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
   const double pad = 2 * rev;
   const double k1 = lag_shape.over(0.0, 0.95 * R).k1;  // the lag's slope over the ball
   gap_lag = std::sqrt(1 + k1 * k1);
+  std::shared_ptr<const CorrectionIndex> index;  // the pass's, shared by its windows
   for (const Window& win : window) {
     const std::size_t p = win.pass;
+    if (!index || win.t_lo == 0)
+      index = std::make_shared<const CorrectionIndex>(path->correction_samples(p));
     const double t_lo = win.t_lo, t_hi = win.t_hi, t_mid = 0.5 * (t_lo + t_hi);
     // The feed in plan along the window (the paper's: uniform in Y).
     const Vec3 f = path->feed_direction(p, t_mid);
@@ -87,9 +90,10 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     const Vec3 velocity = f * path->speed(p, t_mid);
     if (t_lo > 0) stretch.lo = t_lo, stretch.v_lo = velocity;
     if (t_hi < path->pass(p).t_end) stretch.hi = t_hi, stretch.v_hi = velocity;
-    centre.emplace_back(*path, p, t_lo - pad, t_hi + pad, kTableTolerance, false, stretch);
+    centre.emplace_back(*path, p, t_lo - pad, t_hi + pad, kTableTolerance, false, stretch, index);
     if (runout > 0)
-      spindle_axis.emplace_back(*path, p, t_lo - pad, t_hi + pad, kTableTolerance, true, stretch);
+      spindle_axis.emplace_back(*path, p, t_lo - pad, t_hi + pad, kTableTolerance, true, stretch,
+                                index);
     // A fixed posture keeps the frame over the pass; along the normal over the curvature it
     // turns about X with the inclination (tooth_passage.cpp says which postures are followed).
     const bool tilt = !path->pass(p).posture.vertical();

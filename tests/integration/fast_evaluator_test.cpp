@@ -126,7 +126,8 @@ TEST_CASE("the row walk gives the node walk's heights", "[fast][reference]") {
   // round-off (1e-11 mm) everywhere: at lambda 0 (the tool's tip, handed to the reference), on
   // the paper's slope, steep, stepping across, another edge with four teeth, on a vibrating
   // and deflected path, and along the shipped radial-then-spiral CL path (bent passes in
-  // straight windows of a tenth of a tooth period, beyond whose ends most nodes lie).
+  // straight windows of a tenth of a tooth period, beyond whose ends most nodes lie), also with
+  // its vibration and deflection (2 735 windows of one pass's corrections).
   struct Case {
     const char* name;
     double lambda;
@@ -147,7 +148,13 @@ TEST_CASE("the row walk gives the node walk's heights", "[fast][reference]") {
            {"path.file=" + source_dir() + "/configs/examples/cl/radial_spiral.cl",
             "region.size=[1.0,1.0]", "region.spacing=0.02"},
            "",
-           read_file(source_dir() + "/configs/examples/cl_radial_spiral.toml")});
+           read_file(source_dir() + "/configs/examples/cl_radial_spiral.toml")},
+      Case{"radial then spiral (CL), vibration and deflection",
+           0.0,
+           {"path.file=" + source_dir() + "/configs/examples/cl/radial_spiral.cl",
+            "region.size=[0.5,0.5]", "region.spacing=0.02"},
+           "",
+           read_file(source_dir() + "/configs/examples/cl_radial_spiral.toml") + kDynamics});
   INFO(c.name);
   const std::string scene =
       c.whole.empty() ? paper_scene(kConvex, c.lambda, 0.35, 0.35, 0.01) + c.extra : c.whole;

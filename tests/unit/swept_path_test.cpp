@@ -31,32 +31,38 @@ TEST_CASE("swept path: the pass's earlier loop counts, its recent trail does not
   const topomill::ToolPath path = loops();
   const topomill::SweptPath swept(path);
   // On the second loop at angle 0 (waypoint 36): the time is the first loop's length and the
-  // jump out.
+  // jump out; the trail is the last 0.5 of it (at speed 1).
   const auto& w = path.pass(0).waypoints;
   double t = 0;
   for (int k = 0; k < 36; ++k) t += (w[k + 1].centre - w[k].centre).norm();
-  const Vec3 centre = w[36].centre;
-  const auto cut = swept.before(0, t, 0.5, centre, 0.5);
-  // The first loop's segments near (1.3, 0, 1): those within 0.5 of it that the centre left
-  // more than 0.5 (the trail, at speed 1) before t, by the distances and times here. (The last
+  const double until = t - 0.5;
+  // Points about (1.3, 0, 1) within the ball's reach: swept when within R = 0.5 of a segment of
+  // the first loop that the centre left by `until`, by the distances and times here. (The last
   // of the loop, 340 to 350 deg, is left 0.33 before t, across the jump out: the trail.)
-  std::size_t expected = 0;
-  double left = 0;
-  for (int k = 0; k < 36; ++k) {
-    left += (w[k + 1].centre - w[k].centre).norm();
-    expected += left <= t - 0.5 &&
-                topomill::SweptPath::distance(centre, w[k].centre, w[k + 1].centre) < 0.5;
-  }
-  CHECK(expected >= 3);
-  CHECK(cut.size() == expected);
-  for (const auto& s : cut) CHECK(std::abs(s.first.norm() - std::sqrt(2.0)) < 1e-12);  // r = 1
-  // With the whole pass before as "recent", nothing of it counts; the later pass never does.
-  CHECK(swept.before(0, t, 1e9, centre, 0.5).empty());
-  CHECK(swept.before(0, 1e9, 0.5, Vec3(5, 0, 1), 0.5).empty());
+  int swept_points = 0, kept_points = 0;
+  for (double dx = -0.6; dx <= 0.6; dx += 0.05)
+    for (double dy = -0.6; dy <= 0.6; dy += 0.05) {
+      const Vec3 x = w[36].centre + Vec3(dx, dy, 0.1);
+      bool expected = false;
+      double left = 0;
+      for (int k = 0; k < 36; ++k) {
+        left += (w[k + 1].centre - w[k].centre).norm();
+        expected = expected || (left <= until && topomill::SweptPath::distance(
+                                                     x, w[k].centre, w[k + 1].centre) < 0.5);
+      }
+      INFO("point " << x.transpose());
+      CHECK(swept.swept(0, until, x, 0.5) == expected);
+      ++(expected ? swept_points : kept_points);
+    }
+  CHECK(swept_points > 50);
+  CHECK(kept_points > 50);
+  // With the whole pass as the trail, nothing of it counts; the later pass never does.
+  CHECK_FALSE(swept.swept(0, -1.0, Vec3(1.0, 0.1, 1), 0.5));
+  CHECK_FALSE(swept.swept(0, 1e9, Vec3(5, 0, 1), 0.5));
   // From the second pass, the first is all before it: near (5, 0, 1) none of it is within 0.5,
   // within 4 the outer loop's nearest segments are.
-  CHECK(swept.before(1, 0.0, 0.5, Vec3(5, 0, 1), 0.5).empty());
-  CHECK_FALSE(swept.before(1, 0.0, 0.5, Vec3(5, 0, 1), 4.0).empty());
+  CHECK_FALSE(swept.swept(1, 0.0, Vec3(5, 0, 1), 0.5));
+  CHECK(swept.swept(1, 0.0, Vec3(5, 0, 1), 4.0));
 }
 
 TEST_CASE("swept path: distance to a segment", "[cl]") {
