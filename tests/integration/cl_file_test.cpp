@@ -274,8 +274,9 @@ std::string turned_raster_file(const std::string& name, const AxisAt& axis = nul
   };
   for (int k = -3; k <= 3; ++k) {
     const double d = k * 0.06, e = k % 2 == 0 ? 0.35 : -0.35;  // across, along
-    point(0.01 - d * s - e * c, d * c - e * s);
-    point(0.01 - d * s + e * c, d * c + e * s);
+    // Each line written as five points (as CAM output writes long lines), where a 5-axis
+    // axis turns from point to point along a straight pass.
+    for (int q = -2; q <= 2; ++q) point(0.01 - d * s + q * e / 2 * c, d * c + q * e / 2 * s);
     if (k == 0) point(0.01 + e * c - 0.2 * s, e * s + 0.2 * c);
     out << "\n";
   }
