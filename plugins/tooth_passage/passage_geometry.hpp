@@ -1,6 +1,6 @@
-// One node under one pass of the ball: where the ball is over it, how high, and when a tooth's
-// edge crosses its vertical line. Both walks (the reference per node, the row sweep) are built
-// from these probes.
+// One node under one window of a pass of the ball (a straight stretch: PassageSetup::Window):
+// where the ball is over it, how high, and when a tooth's edge crosses its vertical line. Both
+// walks (the reference per node, the row sweep) are built from these probes.
 //
 // For a node at horizontal offset d(t) = node - centre(t) from the ball's axis, the ball point
 // above it has sin(alpha) = |d| / R and height centre_z - sqrt(R^2 - |d|^2). Tooth j's edge is
@@ -94,7 +94,8 @@ struct PassageSetup {
   std::vector<char> tilted;
   std::vector<Eigen::Matrix3d> to_tool;
   std::vector<std::pair<double, double>> tip_offset;
-  // Per pass along the normal over the curvature, the frame's turn: the normal turns about X by
+  // Per window along the normal over the curvature (or of CL data whose axis turns: `blend`
+  // below), the frame's turn: the normal turns about X by
   // the change of the surface's inclination under the centre, theta(t) = lambda(t) - lambda(0),
   // and with it the axis and the frame (Q(t) = R_x(-theta) Q(0): docs/model.md). Bounds of
   // |theta'| and |theta''| over the pass (rad/s, rad/s^2), from samples with a margin as the
