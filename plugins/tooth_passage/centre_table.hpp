@@ -24,12 +24,12 @@
 
 namespace topomill::plugins {
 
-// A stretch [lo, hi] of a pass, continued beyond each end at the velocity it has there (of the
-// spindle's axis: the runout still circles about the continued line). The default is the whole
+// A stretch [lo, hi] of a pass, a line at one speed, continued beyond its ends at its velocity (of
+// the spindle's axis: the runout still circles about the continued line). The default is the whole
 // pass as the path gives it.
 struct Stretch {
   double lo = -INFINITY, hi = INFINITY;
-  Vec3 v_lo = Vec3::Zero(), v_hi = Vec3::Zero();
+  Vec3 v = Vec3::Zero();  // the stretch's one velocity (a line at one speed)
 };
 
 // A pass's correction samples indexed for range queries: per axis, and its pieces' speeds in
@@ -230,9 +230,8 @@ class CentreTable {
   Vec3 path_centre(double t) const {
     if (t < stretch_.lo || t > stretch_.hi) {
       const double end = t < stretch_.lo ? stretch_.lo : stretch_.hi;
-      const Vec3& v = t < stretch_.lo ? stretch_.v_lo : stretch_.v_hi;
-      const Vec3 axis =
-          path_->nominal_centre(pass_, end) - path_->runout_offset(pass_, end) + v * (t - end);
+      const Vec3 axis = path_->nominal_centre(pass_, end) - path_->runout_offset(pass_, end) +
+                        stretch_.v * (t - end);
       return spindle_axis_ ? axis : Vec3(axis + path_->runout_offset(pass_, t));
     }
     return spindle_axis_ ? Vec3(path_->nominal_centre(pass_, t) - path_->runout_offset(pass_, t))

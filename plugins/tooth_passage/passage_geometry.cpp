@@ -87,9 +87,9 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
                                 : path->speed(p, t_mid) * std::hypot(f.x(), f.y()));
     // A window inside a bent pass continues its line beyond its inner ends.
     Stretch stretch;
-    const Vec3 velocity = f * path->speed(p, t_mid);
-    if (t_lo > 0) stretch.lo = t_lo, stretch.v_lo = velocity;
-    if (t_hi < path->pass(p).t_end) stretch.hi = t_hi, stretch.v_hi = velocity;
+    stretch.v = f * path->speed(p, t_mid);
+    if (t_lo > 0) stretch.lo = t_lo;
+    if (t_hi < path->pass(p).t_end) stretch.hi = t_hi;
     centre.emplace_back(*path, p, t_lo - pad, t_hi + pad, kTableTolerance, false, stretch, index);
     if (runout > 0)
       spindle_axis.emplace_back(*path, p, t_lo - pad, t_hi + pad, kTableTolerance, true, stretch,
