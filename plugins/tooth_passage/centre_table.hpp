@@ -15,7 +15,6 @@
 #include <cmath>
 #include <memory>
 #include <stdexcept>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -33,24 +32,36 @@ struct Stretch {
 };
 
 // A pass's correction samples indexed for range queries: per axis, and its pieces' speeds in
-// plan and along z. One per pass, shared by the tables of its windows (each would otherwise
-// hold its own: 8 GB for the radial-then-spiral example's 2 735 windows with effects).
+// plan and along z; and the length of its path in plan up to each sample (prefix sums), for the
+// length over any span in O(1). One per pass, shared by the tables of its windows (each would
+// otherwise hold its own: 8 GB for the radial-then-spiral example's 2 735 windows with effects).
 struct CorrectionIndex {
-  RangeTable range[3];
-  RangeTable speed[2];
+  RangeTable<3> range;              // the samples' x, y, z
+  RangeTable<2> speed;              // the pieces' speeds in plan and along z
+  std::vector<double> plan_length;  // [k]: the path's length in plan from sample 0 to sample k
   explicit CorrectionIndex(const ToolPath::Correction& c) {
     const std::size_t n = c.values.size();
     if (n == 0) return;
-    for (int i = 0; i < 3; ++i)
-      range[i] = RangeTable(n, [&](std::size_t k) { return c.values[k][i]; });
+    plan_length.assign(n, 0.0);
+    for (std::size_t k = 1; k < n; ++k)
+      plan_length[k] = plan_length[k - 1] + piece_speed(c, k - 1, true) * c.dt;
+    range = RangeTable<3>(n, [&](std::size_t k) { return sample(c, k); });
     if (n < 2) return;
-    for (int i = 0; i < 2; ++i)
-      speed[i] = RangeTable(n - 1, [&](std::size_t k) { return piece_speed(c, k, i == 0); });
+    speed = RangeTable<2>(n - 1, [&](std::size_t k) { return piece_speeds(c, k); });
+  }
+  static std::array<double, 3> sample(const ToolPath::Correction& c, std::size_t k) {
+    return {c.values[k].x(), c.values[k].y(), c.values[k].z()};
+  }
+  // Piece k's speeds in plan and along z.
+  static std::array<double, 2> piece_speeds(const ToolPath::Correction& c, std::size_t k) {
+    return {piece_speed(c, k, true), piece_speed(c, k, false)};
   }
   // Piece k's speed in plan or along z.
   static double piece_speed(const ToolPath::Correction& c, std::size_t k, bool plan) {
     const Vec3 d = (c.values[k + 1] - c.values[k]) / c.dt;
-    return plan ? std::hypot(d.x(), d.y()) : std::abs(d.z());
+    // (sqrt, not hypot: mm/s need no care for overflow, and a span's query reads this at its
+    // ragged ends, where hypot cost a third of the query.)
+    return plan ? std::sqrt(d.x() * d.x() + d.y() * d.y()) : std::abs(d.z());
   }
 };
 
@@ -83,9 +94,11 @@ class CentreTable {
 
   Vec3 operator()(double t) const {
     Vec3 c = nominal(t);
-    if (!correction_->values.empty()) c += correction_->at(t);
+    if (corrected()) c += correction_->at(t);
     return c;
   }
+  // Whether the pass has a correction.
+  bool corrected() const { return !correction_->values.empty(); }
 
   Vec3 nominal(double t) const {
     const double u = (t - t0_) * inv_dt_;
@@ -127,37 +140,59 @@ class CentreTable {
   // (za + zb - 2 zm) / 2 above the lowest point), plus the correction's lowest, which, linear
   // between samples, is at an end or at a sample inside.
   double lowest_z(double ta, double tb) const {
-    const double za = nominal(ta).z(), zb = nominal(tb).z(), zm = nominal(0.5 * (ta + tb)).z();
-    return std::min(za, zb) - std::abs(za + zb - 2 * zm) - 1e-9 + correction_box(ta, tb).first.z();
+    return nominal_lowest_z(ta, tb) + correction_box(ta, tb).first.z();
+  }
+  // Its nominal part (the caller may have the correction's box already).
+  double nominal_lowest_z(double ta, double tb) const {
+    return nominal_lowest_z(ta, tb, nominal(ta).z(), nominal(tb).z());
+  }
+  // The same with the nominal heights at the ends known (za, zb).
+  double nominal_lowest_z(double ta, double tb, double za, double zb) const {
+    const double zm = nominal(0.5 * (ta + tb)).z();
+    return std::min(za, zb) - std::abs(za + zb - 2 * zm) - 1e-9;
   }
 
   // The box [lo, hi] the correction stays in over [ta, tb]: linear between its samples and held
   // beyond them, it lies within the range of the samples from the one at or before ta to the one
   // at or after tb. Zero when there is none.
   std::pair<Vec3, Vec3> correction_box(double ta, double tb) const {
-    if (index_->range[0].empty()) return {Vec3::Zero(), Vec3::Zero()};
+    if (index_->range.empty()) return {Vec3::Zero(), Vec3::Zero()};
     const auto [k0, k1] = knots(std::floor(ta / correction_->dt), std::ceil(tb / correction_->dt),
                                 correction_->values.size() - 1);
-    Vec3 lo, hi;
-    for (int i = 0; i < 3; ++i)
-      std::tie(lo[i], hi[i]) =
-          index_->range[i].over(k0, k1, [&](std::size_t k) { return sample(k, i); });
-    return {lo, hi};
+    const auto [lo, hi] = index_->range.over(
+        k0, k1, [&](std::size_t k) { return CorrectionIndex::sample(*correction_, k); });
+    return {Vec3(lo[0], lo[1], lo[2]), Vec3(hi[0], hi[1], hi[2])};
   }
   // The correction's top speeds over [ta, tb], in plan and along z (mm/s): its pieces' slopes.
   std::pair<double, double> correction_speed(double ta, double tb) const {
-    if (index_->speed[0].empty()) return {0.0, 0.0};
-    std::size_t k0, k1;  // (not a structured binding: C++17 lambdas cannot capture one)
-    std::tie(k0, k1) = knots(std::floor(ta / correction_->dt), std::floor(tb / correction_->dt),
-                             correction_->values.size() - 2);
-    auto top = [&](int i) {
-      return index_->speed[i]
-          .over(
-              k0, k1,
-              [&](std::size_t k) { return CorrectionIndex::piece_speed(*correction_, k, i == 0); })
-          .second;
+    if (index_->speed.empty()) return {0.0, 0.0};
+    const auto [k0, k1] = knots(std::floor(ta / correction_->dt), std::floor(tb / correction_->dt),
+                                correction_->values.size() - 2);
+    const auto top =
+        index_->speed
+            .over(k0, k1,
+                  [&](std::size_t k) { return CorrectionIndex::piece_speeds(*correction_, k); })
+            .second;
+    return {top[0], top[1]};
+  }
+
+  // An upper bound of the length of the correction's path in plan over [ta, tb] (mm): its pieces'
+  // lengths, the end pieces' in proportion (linear within a piece, held beyond the samples). A
+  // jerk (one fast piece) adds only its own length: the phase's turn over a span bounded by it
+  // stays tight where the top speed over the span would not (PassageGeometry::Span::sweep).
+  double correction_length(double ta, double tb) const {
+    const auto& len = index_->plan_length;
+    if (len.size() < 2 || !(tb > ta)) return 0.0;
+    const double dt = correction_->dt, end = static_cast<double>(len.size() - 1);
+    // The path length from sample 0 to time t: whole pieces by the prefix sums, the last in
+    // proportion.
+    auto upto = [&](double t) {
+      const double u = std::clamp(t / dt, 0.0, end), k = std::min(std::floor(u), end - 1);
+      const auto i = static_cast<std::size_t>(k);
+      return len[i] + (u - k) * (len[i + 1] - len[i]);
     };
-    return {top(0), top(1)};
+    // The prefix sums' round-off is relative to the pass's whole length.
+    return upto(tb) - upto(ta) + 1e-12 * (1 + len.back());
   }
 
   // How far, at most, the tabulated nominal centre strays in plan from the line through p along
@@ -195,8 +230,6 @@ class CentreTable {
     return {static_cast<std::size_t>(std::clamp(k0, 0.0, top)),
             static_cast<std::size_t>(std::clamp(std::max(k0, k1), 0.0, top))};
   }
-  // The correction's sample k along one axis.
-  double sample(std::size_t k, int axis) const { return correction_->values[k][axis]; }
   void build(double t_lo, double t_hi, double dt) {
     t0_ = t_lo - 2 * dt;
     inv_dt_ = 1 / dt;

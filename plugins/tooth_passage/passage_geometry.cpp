@@ -294,7 +294,7 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) 
   const double A = table_.accel_xy(), h = b - a;
   // rho's range, the centre's top speed in plan, and the range [c_lo, c_hi] of the moment of its
   // velocity about the node, q x v (q the node's offset from the axis).
-  double rho_lo, rho_hi, v, c_lo, c_hi;
+  double rho_lo, rho_hi, v, c_lo, c_hi, length = INFINITY, shift_z_lo = NAN;
   const double first_knot = step > 0 ? std::max(0.0, std::floor(a / step) + 1) * step : INFINITY;
   const bool knot_inside = step > 0 && first_knot < b && first_knot <= last_knot();
   if (!knot_inside) {
@@ -319,6 +319,7 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) 
     // chord moved to the box's middle, thickened by the sagitta and the box's half diagonal (a
     // convex region, as advance() needs).
     const auto [lo, hi] = table_.correction_box(a, b);
+    shift_z_lo = lo.z();
     const Vec3 mid = 0.5 * (lo + hi), ca = table_.nominal(a) + mid, cb = table_.nominal(b) + mid;
     const double grow = A * h * h / 8 + 0.5 * norm(hi.x() - lo.x(), hi.y() - lo.y()) + 1e-12;
     const double u = nearest_on_chord(ca, cb);
@@ -327,15 +328,18 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) 
     rho_hi = std::max(norm(ax, ay), norm(bx, by)) + grow;
     v = s_.top_speed(win_, a, b).first;
     c_hi = rho_hi * v, c_lo = -c_hi;
+    // The centre's path: the nominal one's at most its top speed a second, the correction's
+    // its own pieces' lengths.
+    length = s_.nominal_speed[win_].first * h + table_.correction_length(a, b);
   }
-  Span out = bound_rates(rho_lo, rho_hi, v, c_lo, c_hi, A, knot_inside);
-  out.plan_lo = rho_lo;
+  Span out = bound_rates(rho_lo, rho_hi, v, c_lo, c_hi, A, knot_inside, length);
+  out.plan_lo = rho_lo, out.shift_z_lo = shift_z_lo;
   return out;
 }
 
 PassageGeometry::Span PassageGeometry::bound_rates(double rho_lo, double rho_hi, double v,
                                                    double c_lo, double c_hi, double A,
-                                                   bool knot_inside) const {
+                                                   bool knot_inside, double length) const {
   LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);
   double jump = 0;
   if (!std::isfinite(k.k1)) {  // the rim: the lag's turn, not its rate (lag_shape.hpp)
@@ -376,7 +380,10 @@ PassageGeometry::Span PassageGeometry::bound_rates(double rho_lo, double rho_hi,
                                  A / rho_lo + 2 * spin * speed
                            : INFINITY;
   auto finite = [](double x) { return std::isnan(x) ? INFINITY : x; };
-  return {rho_lo, rho_hi, finite(fall), finite(rise), finite(curve), jump};
+  Span out{rho_lo, rho_hi, finite(fall), finite(rise), finite(curve), jump};
+  if (length < INFINITY)
+    out.sweep = S * length / rho_lo;  // at the rim S is 1: the lag's turn is in `jump`
+  return out;
 }
 
 bool PassageGeometry::lifted(double t, const Vec3& c, const Vec3& v, Vec3& p, Vec3& dp) const {
@@ -423,13 +430,14 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
   const bool knot_inside = step > 0 && first_knot < b && first_knot <= last_knot();
   // The plan region first: its chord, thickness, the plan offset's range and top speed.
   Vec3 ca, cb;
-  double grow, v_plan;
+  double grow, v_plan, shift_z_lo = NAN;
   if (!knot_inside) {
     ca = sa.c, cb = sb.c, grow = A * h_t * h_t / 8 + 1e-12;
     const Vec3 va = sa.v + sa.dv, vb = sb.v + sa.dv;
     v_plan = std::max(norm(va.x(), va.y()), norm(vb.x(), vb.y())) + A * h_t / 2;
   } else {
     const auto [lo, hi] = table_.correction_box(a, b);
+    shift_z_lo = lo.z();
     const Vec3 mid = 0.5 * (lo + hi);
     ca = table_.nominal(a) + mid, cb = table_.nominal(b) + mid;
     grow = A * h_t * h_t / 8 + 0.5 * norm(hi.x() - lo.x(), hi.y() - lo.y()) + 1e-12;
@@ -459,7 +467,7 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
   const double w = len2 > 0 ? std::clamp(-(pa.x() * ux + pa.y() * uy) / len2, 0.0, 1.0) : 0.0;
   const double chord_lo = norm(pa.x() + w * ux, pa.y() + w * uy);
   const double ends_hi = std::max(norm(pa.x(), pa.y()), norm(pb.x(), pb.y()));
-  double thick, v, c_lo, c_hi, accel;
+  double thick, v, c_lo, c_hi, accel, length = INFINITY;
   if (!knot_inside) {
     // P'' bound over the piece (q'' = -c'', the centre's plan acceleration at most A).
     accel =
@@ -480,10 +488,13 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
     v = L * v_plan + turn_speed();
     c_hi = (ends_hi + thick) * v, c_lo = -c_hi;
     accel = INFINITY;
+    // The lift stretches the plan path by at most L, and the frame's turn adds its own.
+    length = L * (s_.nominal_speed[win_].first * h_t + table_.correction_length(a, b)) +
+             turn_speed() * h_t;
   }
   const double rho_lo = std::max(0.0, chord_lo - thick), rho_hi = ends_hi + thick;
-  Span out = bound_rates(rho_lo, rho_hi, v, c_lo, c_hi, accel, knot_inside);
-  out.plan_lo = plan_lo;
+  Span out = bound_rates(rho_lo, rho_hi, v, c_lo, c_hi, accel, knot_inside, length);
+  out.plan_lo = plan_lo, out.shift_z_lo = shift_z_lo;
   return out;
 }
 
@@ -572,10 +583,12 @@ double PassageGeometry::rate(const Sample& at, const Vec3& dv) const {
 // - no tooth can cross there: |g_a| + |g_b| > top h for each (top the bound of |G'|), the phase
 //   cannot reach zero and back;
 // - no crossing under the ball can lie below `below` there (the ball too high, or out of contact);
-// - G monotone (fall < |omega|, or G' of one sign at both ends with room for the curvature): G
-//   is known unwrapped across the piece (advance: the bounds need rho_lo > 0, so the axis cannot
-//   come round the node), and every tooth's crossings are the levels it passes, each solved in
-//   its bracket (solve_level). Far from the axis a whole revolution settles at once.
+// - G monotone (fall < |omega|, rise < -|omega|, or G' of one sign at both ends with room for
+//   the curvature): G is known unwrapped across the piece (advance: the bounds need rho_lo > 0,
+//   so the axis cannot come round the node), and every tooth's crossings are the levels it
+//   passes, each solved in its bracket (solve_level). Far from the axis a whole revolution
+//   settles at once;
+// - the axis within kOnAxis of the node all along: the tip cuts it there.
 // Pieces are split at a correction knot inside first (G' jumps there), else at the middle; below
 // a 1e-10 revolution the sign change alone decides (a touch of the edge no grid can resolve).
 void PassageGeometry::crossings_in(int only, double a, double b, double& below,
@@ -608,20 +621,36 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   // The ball's lowest possible height over the node on a piece.
   auto floor_of = [&](const Piece& p, const Span& sp) {
     if (sp.plan_lo >= s_.R) return double(INFINITY);
-    return table_.lowest_z(p.lo.at.t, p.hi.at.t) - std::sqrt(s_.R2 - sp.plan_lo * sp.plan_lo);
+    const double a = p.lo.at.t, b = p.hi.at.t;
+    // (The ends' nominal heights are their samples' on an ideal path.)
+    const double z =
+        std::isnan(sp.shift_z_lo)
+            ? (table_.corrected() ? table_.lowest_z(a, b)
+                                  : table_.nominal_lowest_z(a, b, p.lo.at.c.z(), p.hi.at.c.z()))
+            : table_.nominal_lowest_z(a, b) + sp.shift_z_lo;
+    return z - std::sqrt(s_.R2 - sp.plan_lo * sp.plan_lo);
   };
   auto found = [&](int tooth, double t) {
     const Probe q = probe(tooth, t);
     roots.push_back({tooth, t, q});
     if (q.over) below = std::min(below, q.height);
   };
-  std::vector<Piece> stack{{end(a), end(b)}};
+  // The pieces still to settle: the caller's thread's, kept from call to call (an allocation
+  // each call cost as much as a tenth of the halving near the axis).
+  thread_local std::vector<Piece> stack;
+  stack.assign(1, Piece{end(a), end(b)});
   // A stop request is honoured here too: on a steep face one node's pieces can take a minute.
   while (!stack.empty() && !s_.stopped()) {
     Piece p = stack.back();
     stack.pop_back();
     const double h = p.hi.at.t - p.lo.at.t;
     const Span sp = span(p.lo.at, p.hi.at);
+    if (sp.rho_hi <= kOnAxis) {
+      // The axis within kOnAxis of the node all along: the tip, a point of every edge, cuts it
+      // here (g jumps by pi rather than crossing zero, and no subdivision settles it).
+      found(first, 0.5 * (p.lo.at.t + p.hi.at.t));
+      continue;
+    }
     const double reach = sp.turn(w, h);
     bool reachable = false;
     for (int j = first; j <= last && !reachable; ++j)
@@ -631,7 +660,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
     if (sp.rho_lo > rho_hi_ || sp.rho_hi < rho_lo_ || floor_of(p, sp) >= below) continue;
     // Monotone: turn < |omega|, or G' of one sign at both ends with room for the curvature (G'
     // is then at least half their sum less the curvature's fall between).
-    bool mono = sp.monotone(w);
+    bool mono = sp.monotone(w) || sp.falls(w);
     if (!mono && std::isfinite(sp.curve)) {
       const double ra = rate_of(p.lo, p.lo.at.dv), rb = rate_of(p.hi, p.lo.at.dv);
       mono = (ra > 0) == (rb > 0) && 0.5 * (std::abs(ra) + std::abs(rb) - sp.curve * h) > 0;
@@ -727,7 +756,7 @@ double PassageGeometry::bisect(int tooth, double lo, double hi, double g_lo) con
 }
 
 double PassageGeometry::walk(double t_b, std::vector<Crossing>& roots, std::uint64_t& visited,
-                             double below) const {
+                             double below, Crossing* lowest) const {
   const double t_lo = this->t_lo(), t_hi = this->t_hi(), rev = s_.rev;
   double best = INFINITY;
   for (int dir : {+1, -1}) {
@@ -746,7 +775,10 @@ double PassageGeometry::walk(double t_b, std::vector<Crossing>& roots, std::uint
       for (const Crossing& r : roots) {
         const Probe& q = r.q;
         ++visited;
-        if (q.over && std::isfinite(q.height)) best = std::min(best, q.height);
+        if (q.over && std::isfinite(q.height) && q.height < best) {
+          best = q.height;
+          if (lowest) *lowest = r;
+        }
       }
     }
   }

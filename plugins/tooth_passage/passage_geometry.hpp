@@ -386,10 +386,22 @@ class PassageGeometry {
     // The node's least distance from the centre in plan, for the ball's height (rho_lo but for
     // a tilted tool, whose rho is the ball point's distance from its own axis).
     double plan_lo = 0;
+    // How far the lag and the azimuth can turn the phase over the piece together, from the
+    // length of the moving point's path (the integral of |G' - w| <= S |v| / rho): where a
+    // correction's jerk makes the top speed, and so fall and rise, large, one fast piece of it
+    // moves the point only by its own length. +inf where the length is not known.
+    double sweep = INFINITY;
+    // The correction's lowest z over the piece, where span() read its box (a knot inside): the
+    // ball's floor there needs it too. NaN when not read.
+    double shift_z_lo = NAN;
     bool monotone(double w) const { return fall < w && jump == 0; }
+    // Whether G turns against the spindle all along (G' <= w + rise < 0): where the axis passes
+    // close on the side where the node's azimuth turns against the spindle faster than it, G
+    // falls by about pi (and crosses a level between three times).
+    bool falls(double w) const { return w + rise < 0 && jump == 0; }
     double top(double w) const { return std::max(w + rise, fall - w); }  // |G'| <= top
     // |G(b) - G(a)| over a piece of length h = b - a.
-    double turn(double w, double h) const { return top(w) * h + jump; }
+    double turn(double w, double h) const { return std::min(top(w) * h, w * h + sweep) + jump; }
   };
   // Rigorous bounds over [a, b]: from the chord of the centre's motion (less its sagitta) when no
   // correction knot lies inside, else from the nominal chord moved by the correction's box there.
@@ -397,9 +409,10 @@ class PassageGeometry {
   Span span(const Sample& a, const Sample& b) const;
   // The bounds from the moving point's path over a piece: its distance from the axis within
   // [rho_lo, rho_hi], its speed at most v, its moment about the axis (q x v, v = -q') within
-  // [c_lo, c_hi], its acceleration at most `accel` (infinite curvature bound with a knot inside).
+  // [c_lo, c_hi], its acceleration at most `accel` (infinite curvature bound with a knot inside),
+  // the length of its path over the piece at most `length` (+inf: not known; Span::sweep).
   Span bound_rates(double rho_lo, double rho_hi, double v, double c_lo, double c_hi, double accel,
-                   bool knot_inside) const;
+                   bool knot_inside, double length = INFINITY) const;
   // A tilted tool's: the ball point over the node in the tool frame, lifted from the plan.
   Span span_tilted(const Sample& a, const Sample& b) const;
   // The ball point over the node relative to the centre in the tool frame, and its velocity, for
@@ -474,9 +487,10 @@ class PassageGeometry {
   // crossings in each found exactly (crossings_in, one subdivision for all teeth), until the
   // bound proves that nothing farther can go lower; returns the lowest height over the node (+inf
   // if none).
-  // `below` is the node's best height so far: nothing at or above it is looked for.
+  // `below` is the node's best height so far: nothing at or above it is looked for. `lowest`, if
+  // given, gets the crossing that gave the returned height (untouched when none did).
   double walk(double t_b, std::vector<Crossing>& roots, std::uint64_t& visited,
-              double below = INFINITY) const;
+              double below = INFINITY, Crossing* lowest = nullptr) const;
 
  private:
   // Where tooth 0's phase G, unwrapped from its value at probe `a` (time ta), equals `level` in

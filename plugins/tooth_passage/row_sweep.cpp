@@ -51,11 +51,12 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
     // Window p's lowest passage below `best`, if any; false when it cannot lower the node.
     auto visit = [&](std::size_t p) {
       bool can_lower = true;
-      walk_tooth_ = -1;
+      walk_tooth_ = -1, walk_fallback_ = false;
       const double h = pass_height(p, x, y, best, can_lower, counts);
       if (h < best) {
         best = h, win_pass_ = walk_tooth_ >= 0 ? p : kNone;
         win_tooth_ = walk_tooth_, win_t_ = walk_t_;
+        win_fallback_ = walk_fallback_, win_fallback_root_ = fallback_root_;
       }
       return can_lower;
     };
@@ -162,7 +163,14 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
     // has already), so that the result is its.
     ++counts.fallbacks, fallback_used_ = true;
     for (auto& r : st.roots) r.clear();
-    h = geo.walk(ideal ? geo.bottom_near(t0()) : t_b, roots_, counts.passages, best);
+    PassageGeometry::Crossing low{-1, 0.0, {}};
+    h = geo.walk(ideal ? geo.bottom_near(t0()) : t_b, roots_, counts.passages, best, &low);
+    // Its lowest passage seeds the next node (seed()), as a corrected walk's would.
+    if (!ideal && low.tooth >= 0) {
+      walk_tooth_ = low.tooth, walk_t_ = low.t, walk_fallback_ = true;
+      fallback_root_ = Root{low.t, 0.0, s_.omega};
+      fallback_root_.x = x;
+    }
   }
   return with_tip(geo, h, t0);
 }
@@ -363,7 +371,9 @@ double RowSweep::seed(double x, double y, NodeCounts& counts) {
   if (win_pass_ == kNone) return INFINITY;
   PassState& st = state_[win_pass_];
   const PassageGeometry geo(s_, win_pass_, x, y, st.rho_lo, st.rho_hi);
-  Root* r = nearest(st.roots[static_cast<std::size_t>(win_tooth_)], win_t_, 0.25 * s_.rev);
+  Root* r = win_fallback_
+                ? &win_fallback_root_
+                : nearest(st.roots[static_cast<std::size_t>(win_tooth_)], win_t_, 0.25 * s_.rev);
   if (!r) return INFINITY;
   Root solved{};
   Probe q{};

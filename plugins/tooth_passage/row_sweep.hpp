@@ -91,6 +91,11 @@ class RowSweep {
   std::size_t win_pass_ = kNone;
   int win_tooth_ = -1, walk_tooth_ = -1;  // walk_*: the last corrected walk's lowest passage
   double win_t_ = 0, walk_t_ = 0;
+  // Whether that passage came from the reference walk (a pass handed to it): its root is then
+  // kept here, not among the pass's roots (which revisit() takes for every passage between the
+  // stops), and seeds the next node all the same.
+  bool win_fallback_ = false, walk_fallback_ = false;
+  Root fallback_root_{}, win_fallback_root_{};
   std::vector<PassageGeometry::Crossing> roots_;
   bool exact_used_ = false, fallback_used_ = false;  // the route of the node in hand
 };
