@@ -125,9 +125,10 @@ TEST_CASE("the row walk gives the node walk's heights", "[fast][reference]") {
   // the reference that solves each node from scratch. They must agree to the crossings'
   // round-off (1e-11 mm) everywhere: at lambda 0 (the tool's tip, handed to the reference), on
   // the paper's slope, steep, stepping across, another edge with four teeth, on a vibrating
-  // and deflected path, and along the shipped radial-then-spiral CL path (bent passes in
-  // straight windows of a tenth of a tooth period, beyond whose ends most nodes lie), also with
-  // its vibration and deflection (2 735 windows of one pass's corrections).
+  // and deflected path (at lambda 30, and at 0 where every node is the reference's), and along the
+  // shipped radial-then-spiral CL path (bent passes in straight windows of a tenth of a tooth
+  // period, beyond whose ends most nodes lie), also with its vibration and deflection (2 735
+  // windows of one pass's corrections).
   struct Case {
     const char* name;
     double lambda;
@@ -143,6 +144,9 @@ TEST_CASE("the row walk gives the node walk's heights", "[fast][reference]") {
            {"tool.plugin=ball_end_constant_lead", "tool.teeth=4"},
            ""},
       Case{"vibration and deflection", 30.0, {}, kDynamics},
+      // Every node handed to the reference walk, each seeded by the passage the reference walk
+      // found lowest at the node before.
+      Case{"tip, vibration and deflection", 0.0, {}, kDynamics},
       Case{"radial then spiral (CL)",
            0.0,
            {"path.file=" + source_dir() + "/configs/examples/cl/radial_spiral.cl",
