@@ -60,7 +60,7 @@ struct CorrectionIndex {
   static double piece_speed(const ToolPath::Correction& c, std::size_t k, bool plan) {
     const Vec3 d = (c.values[k + 1] - c.values[k]) / c.dt;
     // (sqrt, not hypot: mm/s need no care for overflow, and a span's query reads this at its
-    // ragged ends, where hypot cost a third of the query.)
+    // ragged ends, where hypot took half of the query's instructions.)
     return plan ? std::sqrt(d.x() * d.x() + d.y() * d.y()) : std::abs(d.z());
   }
 };

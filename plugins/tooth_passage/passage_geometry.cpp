@@ -636,7 +636,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
     if (q.over) below = std::min(below, q.height);
   };
   // The pieces still to settle: the caller's thread's, kept from call to call (an allocation
-  // each call cost as much as a tenth of the halving near the axis).
+  // each call was 4 % of the halving's instructions at lambda 0 with effects).
   thread_local std::vector<Piece> stack;
   stack.assign(1, Piece{end(a), end(b)});
   // A stop request is honoured here too: on a steep face one node's pieces can take a minute.

@@ -6,7 +6,7 @@
 // ask for its extent and speed over every piece cut near the tool's axis: a scan over the samples
 // cost as much as the rest of the search there. The components that are asked together (the
 // correction's x, y and z; its speeds in plan and along z) share one table, so that a query walks
-// the tree once for all (three walks for a box cost a third of a piece near the axis).
+// the tree once for all (a piece with correction knots inside asked for eight walks, now two).
 // Blocks of 4 make 40 bytes a correction sample for the two tables of a pass (budgeted in
 // resources.cpp); a tree over single samples took four times that, blocks of 16 were 40 % slower.
 #pragma once
