@@ -31,13 +31,17 @@ struct Stretch {
   Vec3 v = Vec3::Zero();  // the stretch's one velocity (a line at one speed)
 };
 
-// A pass's correction samples indexed for range queries: per axis, and its pieces' speeds in
-// plan and along z; and the length of its path in plan up to each sample (prefix sums), for the
-// length over any span in O(1). One per pass, shared by the tables of its windows (each would
-// otherwise hold its own: 8 GB for the radial-then-spiral example's 2 735 windows with effects).
+// A pass's correction samples indexed for range queries: entry k holds sample k's x, y, z and
+// the speeds in plan and along z of piece k (from sample k to k + 1; none after the last sample,
+// where the correction is held), so that one walk of the tree gives a span's box and top speeds
+// together (span() asks both for every piece it bounds: two walks were a third of its cost near
+// the axis with effects). And the length of its path in plan up to each sample (prefix sums),
+// for the length over any span in O(1). One per pass, shared by the tables of its windows (each
+// would otherwise hold its own: 8 GB for the radial-then-spiral example's 2 735 windows with
+// effects).
 struct CorrectionIndex {
-  RangeTable<3> range;              // the samples' x, y, z
-  RangeTable<2> speed;              // the pieces' speeds in plan and along z
+  using Entry = std::array<double, 5>;  // x, y, z, speed in plan, speed along z
+  RangeTable<5> range;
   std::vector<double> plan_length;  // [k]: the path's length in plan from sample 0 to sample k
   explicit CorrectionIndex(const ToolPath::Correction& c) {
     const std::size_t n = c.values.size();
@@ -45,16 +49,12 @@ struct CorrectionIndex {
     plan_length.assign(n, 0.0);
     for (std::size_t k = 1; k < n; ++k)
       plan_length[k] = plan_length[k - 1] + piece_speed(c, k - 1, true) * c.dt;
-    range = RangeTable<3>(n, [&](std::size_t k) { return sample(c, k); });
-    if (n < 2) return;
-    speed = RangeTable<2>(n - 1, [&](std::size_t k) { return piece_speeds(c, k); });
+    range = RangeTable<5>(n, [&](std::size_t k) { return entry(c, k); });
   }
-  static std::array<double, 3> sample(const ToolPath::Correction& c, std::size_t k) {
-    return {c.values[k].x(), c.values[k].y(), c.values[k].z()};
-  }
-  // Piece k's speeds in plan and along z.
-  static std::array<double, 2> piece_speeds(const ToolPath::Correction& c, std::size_t k) {
-    return {piece_speed(c, k, true), piece_speed(c, k, false)};
+  static Entry entry(const ToolPath::Correction& c, std::size_t k) {
+    const Vec3& v = c.values[k];
+    if (k + 1 >= c.values.size()) return {v.x(), v.y(), v.z(), 0.0, 0.0};
+    return {v.x(), v.y(), v.z(), piece_speed(c, k, true), piece_speed(c, k, false)};
   }
   // Piece k's speed in plan or along z.
   static double piece_speed(const ToolPath::Correction& c, std::size_t k, bool plan) {
@@ -63,6 +63,13 @@ struct CorrectionIndex {
     // ragged ends, where hypot took half of the query's instructions.)
     return plan ? std::sqrt(d.x() * d.x() + d.y() * d.y()) : std::abs(d.z());
   }
+};
+
+// What the correction does over a span: the box it stays in, and its top speeds in plan and
+// along z.
+struct CorrectionBounds {
+  Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
+  double speed_xy = 0, speed_z = 0;
 };
 
 class CentreTable {
@@ -152,28 +159,30 @@ class CentreTable {
     return std::min(za, zb) - std::abs(za + zb - 2 * zm) - 1e-9;
   }
 
-  // The box [lo, hi] the correction stays in over [ta, tb]: linear between its samples and held
-  // beyond them, it lies within the range of the samples from the one at or before ta to the one
-  // at or after tb. Zero when there is none.
-  std::pair<Vec3, Vec3> correction_box(double ta, double tb) const {
-    if (index_->range.empty()) return {Vec3::Zero(), Vec3::Zero()};
-    const auto [k0, k1] = knots(std::floor(ta / correction_->dt), std::ceil(tb / correction_->dt),
-                                correction_->values.size() - 1);
-    const auto [lo, hi] = index_->range.over(
-        k0, k1, [&](std::size_t k) { return CorrectionIndex::sample(*correction_, k); });
-    return {Vec3(lo[0], lo[1], lo[2]), Vec3(hi[0], hi[1], hi[2])};
+  // The box the correction stays in over [ta, tb] and its top speeds there: linear between its
+  // samples and held beyond them, it lies within the range of the samples from the one at or
+  // before ta to the one at or after tb, and moves along the pieces between those. Zero when
+  // there is none.
+  CorrectionBounds correction_bounds(double ta, double tb) const {
+    CorrectionBounds out;
+    if (index_->range.empty()) return out;
+    const auto& c = *correction_;
+    const auto [k0, k1] = knots(std::floor(ta / c.dt), std::ceil(tb / c.dt), c.values.size() - 1);
+    // Entries k0 .. k1 - 1: their samples and the pieces from them (piece k1, which starts at or
+    // after tb, is not in the span); sample k1 on its own.
+    const Vec3& last = c.values[k1];
+    out.lo = out.hi = last;
+    if (k1 == k0) return out;
+    const auto [lo, hi] =
+        index_->range.over(k0, k1 - 1, [&](std::size_t k) { return CorrectionIndex::entry(c, k); });
+    out.lo = out.lo.cwiseMin(Vec3(lo[0], lo[1], lo[2]));
+    out.hi = out.hi.cwiseMax(Vec3(hi[0], hi[1], hi[2]));
+    out.speed_xy = hi[3], out.speed_z = hi[4];
+    return out;
   }
-  // The correction's top speeds over [ta, tb], in plan and along z (mm/s): its pieces' slopes.
-  std::pair<double, double> correction_speed(double ta, double tb) const {
-    if (index_->speed.empty()) return {0.0, 0.0};
-    const auto [k0, k1] = knots(std::floor(ta / correction_->dt), std::floor(tb / correction_->dt),
-                                correction_->values.size() - 2);
-    const auto top =
-        index_->speed
-            .over(k0, k1,
-                  [&](std::size_t k) { return CorrectionIndex::piece_speeds(*correction_, k); })
-            .second;
-    return {top[0], top[1]};
+  std::pair<Vec3, Vec3> correction_box(double ta, double tb) const {
+    const CorrectionBounds b = correction_bounds(ta, tb);
+    return {b.lo, b.hi};
   }
 
   // An upper bound of the length of the correction's path in plan over [ta, tb] (mm): its pieces'

@@ -83,14 +83,12 @@ class LagShape {
   }
 
   Bound over(double lo, double hi) const {
-    const double width = R_ / kBins;
-    const auto last = static_cast<double>(kBins - 1);
-    const auto b0 = static_cast<std::size_t>(std::clamp(std::floor(lo / width), 0.0, last));
-    const auto b1 = static_cast<std::size_t>(std::clamp(std::floor(hi / width), 0.0, last));
+    const std::size_t b0 = bin(lo), b1 = bin(hi);
     Bound r{0, 0, tip_ > 0 && lo <= tip_ && tip_ <= hi};
-    const auto n = b1 - b0 + 1;
-    int L = 0;  // 2^L <= n < 2^(L + 1)
-    while ((std::size_t{2} << L) <= n) ++L;
+    // 2^L <= n < 2^(L + 1), from the leading zeros (a loop doubling to n was 7 % of the ideal
+    // near-axis walk's instructions: span() asks this for every piece).
+    const unsigned long long n = b1 - b0 + 1;
+    const int L = 63 - __builtin_clzll(n);
     const std::size_t a = level(L) + b0, b = level(L) + b1 + 1 - (std::size_t{1} << L);
     r.k1 = std::max(k1_[a], k1_[b]), r.k2 = std::max(k2_[a], k2_[b]);
     if (hi >= R_) r.k1 = r.k2 = INFINITY;  // the rim: no bound
@@ -103,6 +101,14 @@ class LagShape {
   // Where level L of the sparse table starts (level l holds kBins + 1 - 2^l entries).
   static constexpr std::size_t level(int L) {
     return static_cast<std::size_t>(L) * (kBins + 1) - (std::size_t{1} << L) + 1;
+  }
+
+  // The bin holding rho, clamped to the table (NaN to the first). Truncation, not std::floor:
+  // rho / width is not negative where it is converted, and floor without SSE4.1 is a call.
+  std::size_t bin(double rho) const {
+    const double x = rho * (kBins / R_);
+    if (!(x > 0)) return 0;
+    return x < static_cast<double>(kBins - 1) ? static_cast<std::size_t>(x) : kBins - 1;
   }
 
   double slope(const ToolGeometry& tool, double rho) const {

@@ -170,8 +170,8 @@ bool PassageSetup::on_tip_line(std::size_t w, double x, double y) const {
 
 std::pair<double, double> PassageSetup::top_speed(std::size_t p, double ta, double tb) const {
   const auto [h, v] = nominal_speed[p];
-  const auto [ch, cv] = centre[p].correction_speed(ta, tb);
-  return {h + ch, v + cv};
+  const CorrectionBounds c = centre[p].correction_bounds(ta, tb);
+  return {h + c.speed_xy, v + c.speed_z};
 }
 
 PassageSetup::Turn PassageSetup::turn_bounds(const ToolPath& path, const Window& w, double pad) {
@@ -294,7 +294,7 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) 
   const double A = table_.accel_xy(), h = b - a;
   // rho's range, the centre's top speed in plan, and the range [c_lo, c_hi] of the moment of its
   // velocity about the node, q x v (q the node's offset from the axis).
-  double rho_lo, rho_hi, v, c_lo, c_hi, length = INFINITY, shift_z_lo = NAN;
+  double rho_lo, rho_hi, v, c_lo, c_hi, length = INFINITY, z_lo = NAN;
   const double first_knot = step > 0 ? std::max(0.0, std::floor(a / step) + 1) * step : INFINITY;
   const bool knot_inside = step > 0 && first_knot < b && first_knot <= last_knot();
   if (!knot_inside) {
@@ -318,22 +318,23 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) 
     // the chord) moved by a correction within the box it keeps to over [a, b]; so within the
     // chord moved to the box's middle, thickened by the sagitta and the box's half diagonal (a
     // convex region, as advance() needs).
-    const auto [lo, hi] = table_.correction_box(a, b);
-    shift_z_lo = lo.z();
-    const Vec3 mid = 0.5 * (lo + hi), ca = table_.nominal(a) + mid, cb = table_.nominal(b) + mid;
+    const CorrectionBounds box = table_.correction_bounds(a, b);
+    const Vec3 &lo = box.lo, &hi = box.hi, mid = 0.5 * (lo + hi);
+    const Vec3 na = table_.nominal(a), nb = table_.nominal(b), ca = na + mid, cb = nb + mid;
+    z_lo = table_.nominal_lowest_z(a, b, na.z(), nb.z()) + lo.z();
     const double grow = A * h * h / 8 + 0.5 * norm(hi.x() - lo.x(), hi.y() - lo.y()) + 1e-12;
     const double u = nearest_on_chord(ca, cb);
     const double ax = x_ - ca.x(), ay = y_ - ca.y(), bx = x_ - cb.x(), by = y_ - cb.y();
     rho_lo = std::max(0.0, norm(ax - u * (cb.x() - ca.x()), ay - u * (cb.y() - ca.y())) - grow);
     rho_hi = std::max(norm(ax, ay), norm(bx, by)) + grow;
-    v = s_.top_speed(win_, a, b).first;
+    v = s_.nominal_speed[win_].first + box.speed_xy;
     c_hi = rho_hi * v, c_lo = -c_hi;
     // The centre's path: the nominal one's at most its top speed a second, the correction's
     // its own pieces' lengths.
     length = s_.nominal_speed[win_].first * h + table_.correction_length(a, b);
   }
   Span out = bound_rates(rho_lo, rho_hi, v, c_lo, c_hi, A, knot_inside, length);
-  out.plan_lo = rho_lo, out.shift_z_lo = shift_z_lo;
+  out.plan_lo = rho_lo, out.z_lo = z_lo;
   return out;
 }
 
@@ -430,18 +431,19 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
   const bool knot_inside = step > 0 && first_knot < b && first_knot <= last_knot();
   // The plan region first: its chord, thickness, the plan offset's range and top speed.
   Vec3 ca, cb;
-  double grow, v_plan, shift_z_lo = NAN;
+  double grow, v_plan, z_lo = NAN;
   if (!knot_inside) {
     ca = sa.c, cb = sb.c, grow = A * h_t * h_t / 8 + 1e-12;
     const Vec3 va = sa.v + sa.dv, vb = sb.v + sa.dv;
     v_plan = std::max(norm(va.x(), va.y()), norm(vb.x(), vb.y())) + A * h_t / 2;
   } else {
-    const auto [lo, hi] = table_.correction_box(a, b);
-    shift_z_lo = lo.z();
-    const Vec3 mid = 0.5 * (lo + hi);
-    ca = table_.nominal(a) + mid, cb = table_.nominal(b) + mid;
+    const CorrectionBounds box = table_.correction_bounds(a, b);
+    const Vec3 &lo = box.lo, &hi = box.hi, mid = 0.5 * (lo + hi);
+    const Vec3 na = table_.nominal(a), nb = table_.nominal(b);
+    ca = na + mid, cb = nb + mid;
+    z_lo = table_.nominal_lowest_z(a, b, na.z(), nb.z()) + lo.z();
     grow = A * h_t * h_t / 8 + 0.5 * norm(hi.x() - lo.x(), hi.y() - lo.y()) + 1e-12;
-    v_plan = s_.top_speed(win_, a, b).first;
+    v_plan = s_.nominal_speed[win_].first + box.speed_xy;
   }
   const double u = nearest_on_chord(ca, cb);
   const double ax = x_ - ca.x(), ay = y_ - ca.y(), bx = x_ - cb.x(), by = y_ - cb.y();
@@ -494,7 +496,7 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
   }
   const double rho_lo = std::max(0.0, chord_lo - thick), rho_hi = ends_hi + thick;
   Span out = bound_rates(rho_lo, rho_hi, v, c_lo, c_hi, accel, knot_inside, length);
-  out.plan_lo = plan_lo, out.shift_z_lo = shift_z_lo;
+  out.plan_lo = plan_lo, out.z_lo = z_lo;
   return out;
 }
 
@@ -547,6 +549,9 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
     // a revolution (gap_rho takes it to 0.95 R, where a loxodrome's is twice its tip's), and the
     // axis's least distance also from the pass's line.
     const double v = s_.plan_line[win_].speed;
+    // The node far enough from the line with the lag's slope over the whole ball (gap_lag, at
+    // least the one below): most nodes, settled without the table.
+    if (line_gap_ >= 1.01 * s_.gap_lag * v / w) return half;
     const double k1 = s_.lag_shape.over(0.0, rho + v * half).k1;
     const double clear = 1.01 * std::sqrt(1 + k1 * k1) * v / w;
     if (std::max(rho - 1.01 * v * half, line_gap_) >= clear) return half;
@@ -578,6 +583,26 @@ double PassageGeometry::rate(const Sample& at, const Vec3& dv) const {
   return s_.omega + s_.lag_shape.slope(sin_a, std::sqrt(1 - sin_a * sin_a), *s_.tool) * du - daz;
 }
 
+double PassageGeometry::split_time(double lo, double hi) const {
+  const double step = s_.path->correction_step(src_), mid = 0.5 * (lo + hi);
+  if (!(step > 0)) return mid;
+  const double top = last_knot() / step;  // the last knot's index
+  // The middle half's knots, ka .. kb: of those, the one with the most trailing zeros is kb with
+  // its bits below the highest bit where ka and kb differ cleared.
+  const double ka = std::max(std::ceil((lo + 0.25 * (hi - lo)) / step), 0.0);
+  const double kb = std::min(std::floor((hi - 0.25 * (hi - lo)) / step), top);
+  if (ka <= kb && kb < 0x1p52) {
+    const auto a = static_cast<std::uint64_t>(ka), b = static_cast<std::uint64_t>(kb);
+    const std::uint64_t k =
+        a == b ? b : b & ~((std::uint64_t{1} << (63 - __builtin_clzll(a ^ b))) - 1);
+    if (const double t = static_cast<double>(k) * step; t > lo && t < hi) return t;
+  }
+  // A piece shorter than two steps: the knot nearest the middle, if any.
+  for (const double k : {std::round(mid / step), std::floor(mid / step), std::ceil(mid / step)})
+    if (const double t = k * step; t > lo && t < hi && k >= 0 && k <= top) return t;
+  return mid;
+}
+
 // Cut [a, b] in halves until each piece is settled. On a piece of length h with ends' phases
 // g_a, g_b (each tooth's, wrapped to its nearest crossing):
 // - no tooth can cross there: |g_a| + |g_b| > top h for each (top the bound of |G'|), the phase
@@ -589,8 +614,9 @@ double PassageGeometry::rate(const Sample& at, const Vec3& dv) const {
 //   passes, each solved in its bracket (solve_level). Far from the axis a whole revolution
 //   settles at once;
 // - the axis within kOnAxis of the node all along: the tip cuts it there.
-// Pieces are split at a correction knot inside first (G' jumps there), else at the middle; below
-// a 1e-10 revolution the sign change alone decides (a touch of the edge no grid can resolve).
+// Pieces are split at a correction knot inside first (G' jumps there: split_time), else at the
+// middle; below a 1e-10 revolution the sign change alone decides (a touch of the edge no grid can
+// resolve).
 void PassageGeometry::crossings_in(int only, double a, double b, double& below,
                                    std::vector<Crossing>& roots) const {
   struct End {
@@ -603,8 +629,6 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   };
   const double w = std::abs(s_.omega), min_len = 1e-10 * s_.rev;
   const int first = only < 0 ? 0 : only, last = only < 0 ? s_.teeth - 1 : only;
-  const double step = s_.path->correction_step(src_);
-  const double last_knot = this->last_knot();
   // Tooth j's phase is tooth 0's turned by its angle: one probe serves all.
   auto offset = [&](int j) { return s_.tooth_angle[j] - s_.tooth_angle[0]; };
   auto end = [&](double t) {
@@ -623,11 +647,10 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
     if (sp.plan_lo >= s_.R) return double(INFINITY);
     const double a = p.lo.at.t, b = p.hi.at.t;
     // (The ends' nominal heights are their samples' on an ideal path.)
-    const double z =
-        std::isnan(sp.shift_z_lo)
-            ? (table_.corrected() ? table_.lowest_z(a, b)
-                                  : table_.nominal_lowest_z(a, b, p.lo.at.c.z(), p.hi.at.c.z()))
-            : table_.nominal_lowest_z(a, b) + sp.shift_z_lo;
+    const double z = !std::isnan(sp.z_lo) ? sp.z_lo
+                     : table_.corrected()
+                         ? table_.lowest_z(a, b)
+                         : table_.nominal_lowest_z(a, b, p.lo.at.c.z(), p.hi.at.c.z());
     return z - std::sqrt(s_.R2 - sp.plan_lo * sp.plan_lo);
   };
   auto found = [&](int tooth, double t) {
@@ -682,19 +705,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
       }
       continue;
     }
-    // Split at the knot nearest the middle, if any, else at the middle.
-    const double lo = p.lo.at.t, hi = p.hi.at.t;
-    double m = 0.5 * (lo + hi);
-    if (step > 0) {
-      const double k = std::round(m / step) * step;
-      if (k > lo && k < hi && k >= 0 && k <= last_knot)
-        m = k;
-      else if (const double k1 = std::floor(m / step) * step; k1 > lo && k1 >= 0 && k1 <= last_knot)
-        m = k1;
-      else if (const double k2 = std::ceil(m / step) * step; k2 < hi && k2 >= 0 && k2 <= last_knot)
-        m = k2;
-    }
-    const End mid = end(m);
+    const End mid = end(split_time(p.lo.at.t, p.hi.at.t));
     // The half nearer the axis first: it holds the lowest crossings, which prune the other.
     Piece left{p.lo, mid}, right{mid, p.hi};
     if (p.lo.q.rho < p.hi.q.rho)

@@ -12,23 +12,37 @@
 
 using topomill::Vec3;
 
+namespace {
+// One straight pass of 0.01 s along X; a correction of 200 samples 50 us apart whose steps are
+// mostly small with a jerk (a hundred times longer) every `jerk` samples, as deflection steps are.
+struct JerkyPass {
+  static constexpr double dt = 5e-5;
+  topomill::ToolPath path;
+  std::vector<Vec3> samples{Vec3::Zero()};
+  std::mt19937 rng;
+  JerkyPass(unsigned seed, int jerk)
+      : path(std::make_shared<fixtures::FlatSurface>(), 1.0, 10.0, 400.0, passes()), rng(seed) {
+    std::normal_distribution<double> step(0, 1e-4);
+    for (int k = 1; k < 200; ++k) {
+      const double scale = k % jerk == 0 ? 100 : 1;
+      samples.push_back(samples.back() + scale * Vec3(step(rng), step(rng), step(rng)));
+    }
+    path.set_correction(0, dt, samples);
+  }
+  static std::vector<topomill::ToolPath::Pass> passes() {
+    std::vector<topomill::ToolPath::Pass> p(1);
+    p[0].waypoints = {{Vec3(0, 0, 1), Vec3::UnitZ(), 10.0}, {Vec3(0.1, 0, 1), Vec3::UnitZ(), 10.0}};
+    return p;
+  }
+};
+}  // namespace
+
 TEST_CASE("centre table: the correction's path length over any span equals a fine sum",
           "[tooth_passage]") {
-  // One straight pass of 0.01 s along X; a correction of 200 samples 50 us apart whose steps
-  // are mostly small with a few jerks (a hundred times longer), as deflection steps are.
-  std::vector<topomill::ToolPath::Pass> passes(1);
-  passes[0].waypoints = {{Vec3(0, 0, 1), Vec3::UnitZ(), 10.0},
-                         {Vec3(0.1, 0, 1), Vec3::UnitZ(), 10.0}};
-  topomill::ToolPath path(std::make_shared<fixtures::FlatSurface>(), 1.0, 10.0, 400.0, passes);
-  std::mt19937 rng(11);
-  std::normal_distribution<double> step(0, 1e-4);
-  const double dt = 5e-5;
-  std::vector<Vec3> samples{Vec3::Zero()};
-  for (int k = 1; k < 200; ++k) {
-    const double scale = k % 37 == 0 ? 100 : 1;
-    samples.push_back(samples.back() + scale * Vec3(step(rng), step(rng), step(rng)));
-  }
-  path.set_correction(0, dt, samples);
+  JerkyPass jp(11, 37);
+  const topomill::ToolPath& path = jp.path;
+  std::mt19937& rng = jp.rng;
+  const double dt = JerkyPass::dt;
   const topomill::plugins::CentreTable table(path, 0, 0.0, path.pass(0).t_end, 1e-7);
   // The plan path from ta to tb in steps of a hundredth of a sample: exact on the linear pieces
   // but for the one step across each knot, which cuts its corner (shorter).
@@ -56,4 +70,64 @@ TEST_CASE("centre table: the correction's path length over any span equals a fin
   }
   CHECK(table.correction_length(3e-3, 3e-3) == 0);
   CHECK(table.correction_length(0.02, 0.03) < 1e-9);  // held beyond the last sample
+}
+
+TEST_CASE("centre table: the correction's box and top speeds over any span equal a scan",
+          "[tooth_passage]") {
+  // The box and the speeds over a span come from
+  // one walk of the range table (CentreTable::correction_bounds). Expected: the correction's
+  // extremes over the span, from its samples inside and its values at the ends (it is linear
+  // between samples), and the largest slope of the pieces the span overlaps, both found here by
+  // a scan. A piece that starts where the span ends is not in it.
+  JerkyPass jp(5, 29);
+  const topomill::ToolPath& path = jp.path;
+  const std::vector<Vec3>& samples = jp.samples;
+  std::mt19937& rng = jp.rng;
+  const double dt = JerkyPass::dt;
+  const topomill::plugins::CentreTable table(path, 0, 0.0, path.pass(0).t_end, 1e-7);
+  // (Pieces within `slack` of the span count as overlapping it: a knot's time over the step may
+  // round to just past the knot, and the table then takes the piece after it too.)
+  auto scan = [&](double ta, double tb, Vec3& lo, Vec3& hi, double& v_xy, double& v_z,
+                  double slack) {
+    lo = hi = path.correction(0, ta);
+    auto take = [&](const Vec3& c) { lo = lo.cwiseMin(c), hi = hi.cwiseMax(c); };
+    take(path.correction(0, tb));
+    v_xy = v_z = 0;
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      const double t = static_cast<double>(k) * dt;
+      if (t > ta && t < tb) take(samples[k]);
+      // Piece k, [t, t + dt], overlaps the span.
+      if (k + 1 < samples.size() && t < tb + slack && t + dt > ta - slack) {
+        const Vec3 d = (samples[k + 1] - samples[k]) / dt;
+        v_xy = std::max(v_xy, std::hypot(d.x(), d.y())), v_z = std::max(v_z, std::abs(d.z()));
+      }
+    }
+  };
+  std::uniform_real_distribution<double> time(-2e-3, 0.012);
+  std::uniform_int_distribution<int> knot(0, 199);
+  for (int q = 0; q < 400; ++q) {
+    double ta = time(rng), tb = time(rng);
+    if (q % 4 == 1) ta = knot(rng) * dt;  // ends on knots, as crossings_in cuts
+    if (q % 4 == 2) tb = knot(rng) * dt;
+    if (q % 4 == 3) tb = ta + 0.3 * dt;  // within one piece
+    if (ta > tb) std::swap(ta, tb);
+    Vec3 lo, hi, lo_wide, hi_wide;
+    double v_xy, v_z, v_xy_wide, v_z_wide;
+    scan(ta, tb, lo, hi, v_xy, v_z, 0.0);
+    scan(ta, tb, lo_wide, hi_wide, v_xy_wide, v_z_wide, 1e-9 * dt);
+    const topomill::plugins::CorrectionBounds got = table.correction_bounds(ta, tb);
+    INFO("[" << ta / dt << ", " << tb / dt << "] samples");
+    // The table's box holds the scan's (it is the samples' range, the ends rounded out to
+    // samples), its speeds the scan's top speeds.
+    for (int c = 0; c < 3; ++c) {
+      CHECK(got.lo[c] <= lo[c]);
+      CHECK(got.hi[c] >= hi[c]);
+    }
+    CHECK(got.speed_xy >= v_xy * (1 - 1e-12));
+    CHECK(got.speed_z >= v_z * (1 - 1e-12));
+    // Tight: a span inside one piece has that piece's speed; a span from knot to knot its
+    // pieces' top speed (not the next piece's, but where the knot's time rounds past it).
+    CHECK(got.speed_xy <= v_xy_wide * (1 + 1e-12) + 1e-12);
+    CHECK(got.speed_z <= v_z_wide * (1 + 1e-12) + 1e-12);
+  }
 }
