@@ -658,9 +658,13 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
     roots.push_back({tooth, t, q});
     if (q.over) below = std::min(below, q.height);
   };
-  // The pieces still to settle: the caller's thread's, kept from call to call (an allocation
-  // each call was 4 % of the halving's instructions at lambda 0 with effects).
-  thread_local std::vector<Piece> stack;
+  // The pieces still to settle, in storage kept by the caller's thread from call to call (an
+  // allocation each call was 4 % of the halving's instructions at lambda 0 with effects), taken
+  // into a local for the call: every use of a thread_local in a shared library is a call to find
+  // it (2 % of the instructions there).
+  thread_local std::vector<Piece> kept;
+  std::vector<Piece> stack;
+  stack.swap(kept);
   stack.assign(1, Piece{end(a), end(b)});
   // A stop request is honoured here too: on a steep face one node's pieces can take a minute.
   while (!stack.empty() && !s_.stopped()) {
@@ -713,6 +717,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
     else
       stack.push_back(left), stack.push_back(right);
   }
+  kept.swap(stack);
 }
 
 namespace {
