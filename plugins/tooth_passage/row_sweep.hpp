@@ -32,6 +32,7 @@ class RowSweep {
     // The root, its move (since the node before when ideal; per unit x along the row when
     // corrected, where a root is not solved at every node), the secant there.
     double t, drift, slope;
+    double bend = 0;  // ideal paths: the drift's change since the node before
     // Corrected paths only: where it was solved, the edge's height there, and how fast that
     // height can fall along the row (mm/mm) for `reach` either side; infinite when unknown.
     double x = 0, height = INFINITY, fall = INFINITY, reach = 0;
