@@ -21,7 +21,7 @@ namespace {
 constexpr std::uint64_t kCoreBytesPerNode = 40;
 // One sample of the force/dynamics time grid: its cut state (with the material test's closure on
 // the heap), its force, the dynamics' input and output, the correction, and an evaluator's index
-// of it (tooth_passage's range tables and path-length sums hold 48 bytes a sample).
+// of it (tooth_passage's range table and path-length sums hold 48 bytes a sample).
 constexpr std::uint64_t kBytesPerSample =
     sizeof(CutState) + sizeof(CuttingForce) + 3 * sizeof(Vec3) + 128 + 64;
 
