@@ -147,7 +147,7 @@ class CentreTable {
   // (za + zb - 2 zm) / 2 above the lowest point), plus the correction's lowest, which, linear
   // between samples, is at an end or at a sample inside.
   double lowest_z(double ta, double tb) const {
-    return nominal_lowest_z(ta, tb) + correction_box(ta, tb).first.z();
+    return nominal_lowest_z(ta, tb) + correction_bounds(ta, tb).lo.z();
   }
   // Its nominal part (the caller may have the correction's box already).
   double nominal_lowest_z(double ta, double tb) const {
@@ -179,10 +179,6 @@ class CentreTable {
     out.hi = out.hi.cwiseMax(Vec3(hi[0], hi[1], hi[2]));
     out.speed_xy = hi[3], out.speed_z = hi[4];
     return out;
-  }
-  std::pair<Vec3, Vec3> correction_box(double ta, double tb) const {
-    const CorrectionBounds b = correction_bounds(ta, tb);
-    return {b.lo, b.hi};
   }
 
   // An upper bound of the length of the correction's path in plan over [ta, tb] (mm): its pieces'

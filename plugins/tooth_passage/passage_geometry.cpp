@@ -105,7 +105,8 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     const Vec3 c0 = path->nominal_centre(p, 0.0);
     line.push_back(along_y ? c0.x() : c0.y());
     // The correction is linear between its samples and held beyond: its range is theirs.
-    const auto [lo, hi] = centre.back().correction_box(-INFINITY, INFINITY);
+    const CorrectionBounds whole = centre.back().correction_bounds(-INFINITY, INFINITY);
+    const Vec3 &lo = whole.lo, &hi = whole.hi;
     shift_lo.push_back(lo - Vec3(runout, runout, 0)),
         shift_hi.push_back(hi + Vec3(runout, runout, 0));
     lowest_centre.push_back(centre.back().lowest_z(t_lo, t_hi));

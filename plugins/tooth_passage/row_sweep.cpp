@@ -271,7 +271,9 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
       double slope = match ? match->slope : s_.omega;
       // Started where the root's last two moves say it goes on to (on smooth passes the guess
       // is then often within the tolerance and one probe settles it: 7 % of the instructions at
-      // lambda 30).
+      // lambda 30). A root met for the first time has no move (drift 0), so the node after it
+      // takes its whole first move as the bend: leaving the bend out there measured 0.6 % more
+      // instructions, not fewer.
       const double t =
           geo.crossing(tooth, match ? match->t + match->drift + match->bend : guess, slope, q);
       if (!PassageGeometry::converged(q)) return double(NAN);
