@@ -85,8 +85,8 @@ class LagShape {
   Bound over(double lo, double hi) const {
     const std::size_t b0 = bin(lo), b1 = bin(hi);
     Bound r{0, 0, tip_ > 0 && lo <= tip_ && tip_ <= hi};
-    // 2^L <= n < 2^(L + 1), from the leading zeros (a loop doubling to n was 7 % of the ideal
-    // near-axis walk's instructions: span() asks this for every piece).
+    // 2^L <= n < 2^(L + 1), from the leading zeros (span() asks this for every piece: a loop
+    // doubling to n was 1.8 % of the ideal walk's instructions at lambda 0).
     const unsigned long long n = b1 - b0 + 1;
     const int L = 63 - __builtin_clzll(n);
     const std::size_t a = level(L) + b0, b = level(L) + b1 + 1 - (std::size_t{1} << L);
@@ -103,8 +103,9 @@ class LagShape {
     return static_cast<std::size_t>(L) * (kBins + 1) - (std::size_t{1} << L) + 1;
   }
 
-  // The bin holding rho, clamped to the table (NaN to the first). Truncation, not std::floor:
-  // rho / width is not negative where it is converted, and floor without SSE4.1 is a call.
+  // The bin holding rho, clamped to the table (NaN to the first): truncation is floor where it
+  // converts (rho is not negative there). A division, floor and clamp in doubles for each end
+  // were 3 % of the ideal walk's instructions at lambda 0.
   std::size_t bin(double rho) const {
     const double x = rho * (kBins / R_);
     if (!(x > 0)) return 0;
