@@ -1,7 +1,8 @@
 // tooth_passage's centre table: the length of the correction's path in plan over a span (from
 // prefix sums, the end pieces in proportion), which bounds how far a correction's jerks can turn
-// the phase over a piece (PassageGeometry::Span::sweep). Checked against the path summed here in
-// small steps: never shorter (a bound), and no longer than round-off.
+// the phase over a piece (PassageGeometry::Span::sweep), checked against the path summed here in
+// small steps: never shorter (a bound), and no longer than round-off. And the correction's box
+// and top speeds over a span (one range-table query), checked against a scan of its samples.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <memory>
@@ -74,11 +75,11 @@ TEST_CASE("centre table: the correction's path length over any span equals a fin
 
 TEST_CASE("centre table: the correction's box and top speeds over any span equal a scan",
           "[tooth_passage]") {
-  // The box and the speeds over a span come from
-  // one walk of the range table (CentreTable::correction_bounds). Expected: the correction's
-  // extremes over the span, from its samples inside and its values at the ends (it is linear
-  // between samples), and the largest slope of the pieces the span overlaps, both found here by
-  // a scan. A piece that starts where the span ends is not in it.
+  // The box and the speeds over a span come from one walk of the range table
+  // (CentreTable::correction_bounds). Expected: the correction's extremes over the span, from its
+  // samples inside and its values at the ends (it is linear between samples), and the largest
+  // slope of the pieces the span overlaps, both found here by a scan. A piece that starts where
+  // the span ends is not in it.
   JerkyPass jp(5, 29);
   const topomill::ToolPath& path = jp.path;
   const std::vector<Vec3>& samples = jp.samples;
@@ -111,10 +112,10 @@ TEST_CASE("centre table: the correction's box and top speeds over any span equal
     if (q % 4 == 2) tb = knot(rng) * dt;
     if (q % 4 == 3) tb = ta + 0.3 * dt;  // within one piece
     if (ta > tb) std::swap(ta, tb);
-    Vec3 lo, hi, lo_wide, hi_wide;
+    Vec3 lo, hi, unused_lo, unused_hi;
     double v_xy, v_z, v_xy_wide, v_z_wide;
     scan(ta, tb, lo, hi, v_xy, v_z, 0.0);
-    scan(ta, tb, lo_wide, hi_wide, v_xy_wide, v_z_wide, 1e-9 * dt);
+    scan(ta, tb, unused_lo, unused_hi, v_xy_wide, v_z_wide, 1e-9 * dt);  // its speeds only
     const topomill::plugins::CorrectionBounds got = table.correction_bounds(ta, tb);
     INFO("[" << ta / dt << ", " << tb / dt << "] samples");
     // The table's box holds the scan's (it is the samples' range, the ends rounded out to
