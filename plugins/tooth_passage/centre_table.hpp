@@ -153,8 +153,34 @@ class CentreTable {
   double nominal_lowest_z(double ta, double tb) const {
     return nominal_lowest_z(ta, tb, nominal(ta).z(), nominal(tb).z());
   }
+  // The times [start, end] of the cubic that holds t (for tests).
+  std::pair<double, double> cubic_span(double t) const {
+    const double k = std::floor((t - t0_) * inv_dt_);
+    return {t0_ + k / inv_dt_, t0_ + (k + 1) / inv_dt_};
+  }
   // The same with the nominal heights at the ends known (za, zb).
   double nominal_lowest_z(double ta, double tb, double za, double zb) const {
+    const double ua = (ta - t0_) * inv_dt_, ub = (tb - t0_) * inv_dt_, k = std::floor(ua);
+    if (k >= 1 && k + 2 < static_cast<double>(knots_.size()) && ub <= k + 1) {
+      // Within one cubic (every short piece): its least is at an end or where its slope
+      // vanishes, exactly (to round-off). Near the tool's axis pieces shrink to nothing, and a
+      // margin there would keep the ball's tip, the lowest point near it, from ruling them out.
+      const Cubic& c = cubic_[static_cast<std::size_t>(k)];
+      const double c1 = c[1].z(), c2 = c[2].z(), c3 = c[3].z(), sa = ua - k, sb = ub - k;
+      double low = std::min(za, zb);
+      auto at = [&](double s) {
+        if (s > sa && s < sb) low = std::min(low, c[0].z() + s * (c1 + s * (c2 + s * c3)));
+      };
+      // c1 + 2 c2 s + 3 c3 s^2 = 0
+      if (const double a = 3 * c3, disc = c2 * c2 - a * c1; a != 0 && disc >= 0) {
+        const double q = -(c2 + std::copysign(std::sqrt(disc), c2));
+        if (q != 0) at(c1 / q);
+        at(q / a);
+      } else if (a == 0 && c2 != 0) {
+        at(-c1 / (2 * c2));
+      }
+      return low;
+    }
     const double zm = nominal(0.5 * (ta + tb)).z();
     return std::min(za, zb) - std::abs(za + zb - 2 * zm) - 1e-9;
   }

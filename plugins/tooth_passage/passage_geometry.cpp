@@ -1,6 +1,9 @@
 #include "passage_geometry.hpp"
 
 #include <algorithm>
+#include <limits>
+
+#include "phase_curvature.hpp"
 
 namespace topomill::plugins {
 
@@ -349,8 +352,7 @@ PassageGeometry::Span PassageGeometry::bound_rates(double rho_lo, double rho_hi,
     k = {0, 0, true};  // the rates below without the lag; no curvature bound
   }
   // In u = ln(rho) and the node's azimuth az, G' = omega + Psi_u u' - az' with |u'| <= v / rho
-  // and -az' = (q x v) / rho^2; G'' = Psi_uu u'^2 + Psi_u u'' - az'' with |u''| <= A / rho +
-  // (v / rho)^2 and |az''| <= A / rho + 2 |q x v| v / rho^3.
+  // and -az' = (q x v) / rho^2; |G''| as phase_curvature.hpp bounds it.
   if (!(rho_lo > 0)) return {rho_lo, rho_hi, INFINITY, INFINITY, INFINITY, jump};
   const double speed = v / rho_lo, lag = k.k1 * speed;
   // -az' within [m_lo, m_hi]: on the side of the pass where the node's azimuth turns with the
@@ -376,11 +378,8 @@ PassageGeometry::Span PassageGeometry::bound_rates(double rho_lo, double rho_hi,
     const double hi = 0.5 * (c_lo > 0 ? 1 + S : S - 1) * scale;   // G' - omega <= hi
     fall = std::min(fall, forward ? -lo : hi), rise = std::min(rise, forward ? hi : -lo);
   }
-  const double spin = std::max(std::abs(c_lo), std::abs(c_hi)) / r2_lo;
-  const double curve = !knot_inside && !k.kink
-                           ? k.k2 * speed * speed + k.k1 * (A / rho_lo + speed * speed) +
-                                 A / rho_lo + 2 * spin * speed
-                           : INFINITY;
+  const double curve =
+      !knot_inside && !k.kink ? phase_curvature(k.k1, k.k2, v, A, rho_lo) : INFINITY;
   auto finite = [](double x) { return std::isnan(x) ? INFINITY : x; };
   Span out{rho_lo, rho_hi, finite(fall), finite(rise), finite(curve), jump};
   if (length < INFINITY)
@@ -629,6 +628,14 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
     End lo, hi;
   };
   const double w = std::abs(s_.omega), min_len = 1e-10 * s_.rev;
+  // (`below` falls as crossings are found.) A piece whose ball stays within round-off of `below`
+  // holds nothing lower that counts: next
+  // to the tip (a point of every edge, and the lowest of the ball near the axis) the pieces are
+  // otherwise halved down to kOnAxis before their floor, equal to the tip's height but for
+  // round-off, rules them out.
+  auto above = [&](double floor) {
+    return floor >= below - 16 * std::numeric_limits<double>::epsilon() * (std::abs(below) + s_.R);
+  };
   const int first = only < 0 ? 0 : only, last = only < 0 ? s_.teeth - 1 : only;
   // Tooth j's phase is tooth 0's turned by its angle: one probe serves all.
   auto offset = [&](int j) { return s_.tooth_angle[j] - s_.tooth_angle[0]; };
@@ -685,7 +692,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
       reachable =
           std::abs(wrap(p.lo.q.g + offset(j))) + std::abs(wrap(p.hi.q.g + offset(j))) <= reach;
     if (!reachable) continue;
-    if (sp.rho_lo > rho_hi_ || sp.rho_hi < rho_lo_ || floor_of(p, sp) >= below) continue;
+    if (sp.rho_lo > rho_hi_ || sp.rho_hi < rho_lo_ || above(floor_of(p, sp))) continue;
     // Monotone: turn < |omega|, or G' of one sign at both ends with room for the curvature (G'
     // is then at least half their sum less the curvature's fall between).
     bool mono = sp.monotone(w) || sp.falls(w);

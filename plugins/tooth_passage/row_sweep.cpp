@@ -113,6 +113,9 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
   }
   const PassageGeometry geo(s_, p, x, y, st.rho_lo, st.rho_hi);
   const bool ideal = !s_.wiggles;
+  // The tip's cut where the node lies on the pass's line (+inf elsewhere), found at most once.
+  double tip = NAN;
+  auto tip_cut = [&] { return std::isnan(tip) ? tip = tip_height(geo, t0) : tip; };
   double t_b;
   if (ideal) {
     // The envelope has a single minimum: its bottom, followed from node to node, is the pass's
@@ -148,13 +151,17 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
       return can_lower = false, INFINITY;
     bool solved = false;
     if (const double h = revisit(geo, st, best, counts, solved); !std::isnan(h))
-      return can_lower = solved, with_tip(geo, h, t0);
+      return can_lower = solved, std::min(h, tip_cut());
     t_b = bottom([&](double t) { return geo.floor_envelope(t); }, geo, st, x, t0);
     if (std::isnan(t_b)) return INFINITY;
     if (const double low = geo.floor_envelope(t_b) - 1e-9; low >= best)
       return st.floor = low, st.floor_x = x, can_lower = false, INFINITY;
   }
   bool irregular = false;
+  // On the tip's line the tip cuts the node as the axis passes; with its height as the best
+  // from the start, the exact windows rule out every piece next to that instant whose ball
+  // cannot go lower (on a level pass, all of them) instead of halving towards it.
+  if (ideal) best = std::min(best, tip_cut());
   double h = ideal ? walk(geo, st, t_b, best, counts)
                    : walk_corrected(geo, st, t_b, best, counts, irregular);
   if (s_.stopped()) return INFINITY;  // a walk cut short is not irregular: the map is discarded
@@ -172,15 +179,14 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
       fallback_root_.x = x;
     }
   }
-  return with_tip(geo, h, t0);
+  return std::min(h, tip_cut());
 }
 
 template <class T0>
-double RowSweep::with_tip(const PassageGeometry& geo, double h, T0 t0) const {
+double RowSweep::tip_height(const PassageGeometry& geo, T0 t0) const {
   const std::size_t p = geo.window();
-  if (s_.on_tip_line(p, geo.x(), geo.y()))
-    h = std::min(h, geo.tip_height(s_.tilted[p] ? s_.tip_time(p, geo.x(), geo.y()) : t0()));
-  return h;
+  if (!s_.on_tip_line(p, geo.x(), geo.y())) return INFINITY;
+  return geo.tip_height(s_.tilted[p] ? s_.tip_time(p, geo.x(), geo.y()) : t0());
 }
 
 // The bottom moves little from one node to the next: a parabola through three heights around

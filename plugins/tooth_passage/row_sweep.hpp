@@ -59,9 +59,10 @@ class RowSweep {
   // again only those whose bound fails (`solved` says whether any was); NaN when it needs a walk.
   double revisit(const PassageGeometry& geo, PassState& st, double best, NodeCounts& counts,
                  bool& solved);
-  // h lowered to the tip's height when the node lies on the pass's line.
+  // The tip's height where the node lies on the pass's line (the tip cuts it as the axis
+  // passes over: PassageGeometry::tip_height), else +inf.
   template <class T0>
-  double with_tip(const PassageGeometry& geo, double h, T0 t0) const;
+  double tip_height(const PassageGeometry& geo, T0 t0) const;
   // Corrected: the last node's lowest passage solved at (x, y); its height if in contact.
   double seed(double x, double y, NodeCounts& counts);
   // The root of `roots` (sorted by time) nearest `t` within `reach`; null if none.

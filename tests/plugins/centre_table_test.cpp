@@ -7,8 +7,10 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <string>
 
 #include "fixtures/flat_surface.hpp"
+#include "support/builtin_models.hpp"
 #include "tooth_passage/centre_table.hpp"
 
 using topomill::Vec3;
@@ -131,4 +133,51 @@ TEST_CASE("centre table: the correction's box and top speeds over any span equal
     CHECK(got.speed_xy <= v_xy_wide * (1 + 1e-12) + 1e-12);
     CHECK(got.speed_z <= v_z_wide * (1 + 1e-12) + 1e-12);
   }
+}
+
+TEST_CASE("centre table: the nominal centre's lowest height over a span bounds a dense scan",
+          "[tooth_passage]") {
+  // A pass over the curvature of a convex arc of radius 2 mm, and of a concave one of 3 mm (its
+  // lowest heights inside spans): the centre's height is a circle's, tabulated as cubics. Over any
+  // span the lowest height must lie at or below every height the table gives inside it (the floor
+  // the exact windows rule pieces out by); within one cubic it is that cubic's own least, to
+  // round-off (an end or where its slope vanishes), so that next to the tip a piece's floor equals
+  // the tip's height. Expected: the least of 2001 heights taken evenly over the span.
+  const std::string shape = GENERATE(std::string("convex_arc"), std::string("concave_arc"));
+  const auto arc = testing::make_model<topomill::SurfaceShape>(
+      shape, {{"radius", shape == "convex_arc" ? 2.0 : 3.0}});
+  std::vector<topomill::ToolPath::Pass> passes(1);
+  passes[0].y_start = -1.47, passes[0].t_end = 0.3, passes[0].dx = 0, passes[0].dy = 1;
+  const topomill::ToolPath path(arc, 1.0, 10.0, 400.0, passes);
+  const topomill::plugins::CentreTable table(path, 0, 0.0, 0.3, 1e-7);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> time(0.0, 0.3), length(0.0, 1.0);
+  // Half the spans start within three cubics before the centre's lowest point on the pass (the
+  // concave arc's bottom, 0.147 s in: not on a knot), so that many hold it.
+  double t_low = 0;
+  for (int i = 0; i <= 3000; ++i)
+    if (const double t = 0.3 * i / 3000; table.nominal(t).z() < table.nominal(t_low).z()) t_low = t;
+  const double cubic = table.cubic_span(t_low).second - table.cubic_span(t_low).first;
+  int inside = 0, holds = 0;
+  for (int q = 0; q < 600; ++q) {
+    const double ta = q % 2 ? time(rng) : std::max(0.0, t_low - 3 * cubic * length(rng));
+    const auto [c0, c1] = table.cubic_span(ta);
+    // A third of the spans within ta's cubic, a third up to ten cubics long, the rest longer.
+    const double tb = std::min(0.3, q % 3 == 0   ? ta + (c1 - ta) * length(rng)
+                                    : q % 3 == 1 ? ta + 10 * (c1 - c0) * length(rng)
+                                                 : ta + 0.05 * length(rng));
+    double dense = INFINITY;
+    for (int i = 0; i <= 2000; ++i)
+      dense = std::min(dense, table.nominal(ta + (tb - ta) * i / 2000).z());
+    const double got = table.nominal_lowest_z(ta, tb, table.nominal(ta).z(), table.nominal(tb).z());
+    INFO(shape << ", span [" << ta << ", " << tb << "] s, cubic [" << c0 << ", " << c1 << "]");
+    CHECK(got <= dense + 1e-15);
+    if (tb <= c1) {
+      ++inside;
+      holds += ta < t_low && tb > t_low;
+      CHECK(got >= dense - 1e-11);  // the scan may step over the least by its curvature
+    }
+  }
+  CHECK(inside >= 200);
+  if (shape == "concave_arc") CHECK(holds >= 10);  // spans within one cubic holding the bottom
 }
