@@ -321,8 +321,11 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
           return dir * (t_bound - t_b) >= beyond &&
                  geo.envelope(t_bound) >= std::min(best, best_node);
         };
+        // (Past the bottom the envelope only rises: where it is too high at the root itself, it is
+        // at the next crossing however soon that comes, and the gap need not be proven.)
         if (ends_at(at_root ? t_prev + dir * 0.5 * rev : t_prev) &&
-            (!at_root || ends_at(t_prev + dir * geo.next_gap(t_prev, rho_prev, dir))))
+            (!at_root || ends_at(t_prev) ||
+             ends_at(t_prev + dir * geo.next_gap(t_prev, rho_prev, dir))))
           break;
         // The next revolution exactly, where the next crossing cannot be proven the next.
         auto solve_revolution = [&] {
