@@ -432,6 +432,17 @@ class PassageGeometry {
   // G'(t), the phase's rate (rad/s): the same for every tooth. `dv` is the correction's slope on
   // the side of t asked for (sample's is the right: a piece ending at a knot asks for the left).
   double rate(const Sample& at, const Vec3& dv) const;
+  // Whether the phase is monotone, G' within (0, 2 omega), wherever the node stays within rho_max
+  // of the axis, for a reason that holds all along the window: a vertical tool, the node farther
+  // from the window's line than S v / omega (PlanLine; S from the lag's slope over the ball to
+  // 0.95 R: gap_lag), and rho_max within 0.95 R. Then a step's turn is also exact from its
+  // probes (advance: the centre keeps to the line's strip, a convex region that leaves the node
+  // out), and no span need be asked: most nodes of every scene, all but those within about
+  // v / omega of a pass's line.
+  bool monotone_within(double rho_max) const {
+    return !tilted_ && !turning_ && rho_max <= 0.95 * s_.R &&
+           line_gap_ >= 1.01 * s_.gap_lag * s_.plan_line[win_].speed / std::abs(s_.omega);
+  }
   // Whether the phase is certainly monotone on [a, b] by the crude bound alone.
   bool monotone(double a, double b) const {
     return span(std::min(a, b), std::max(a, b)).monotone(std::abs(s_.omega));

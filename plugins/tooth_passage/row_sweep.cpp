@@ -6,6 +6,9 @@
 namespace topomill::plugins {
 
 namespace {
+double sq(double x) {
+  return x * x;
+}
 // Whether a corrected passage, solved at an earlier node, is still at or above `target` at x by
 // its fall-rate bound (RowSweep::fall_rate).
 template <class Root>
@@ -247,7 +250,12 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
   // The zone around t_b solved for all teeth: [zone[0], zone[1]], empty when the phase is proven
   // monotone around t_b (then each tooth's first crossing is followed from the last node's).
   double zone[2] = {t_b, t_b};
-  if (!geo.monotone(t_b - 0.8 * rev, t_b + 0.8 * rev)) {
+  // (The node moves from the axis at most at the centre's top speed in plan.)
+  const double v_plan = s_.plan_line[geo.window()].speed;
+  const Vec3 c_b = s_.centre[geo.window()](t_b);
+  const double rho_b = std::sqrt(sq(geo.x() - c_b.x()) + sq(geo.y() - c_b.y()));
+  if (!geo.monotone_within(rho_b + v_plan * 0.8 * rev) &&
+      !geo.monotone(t_b - 0.8 * rev, t_b + 0.8 * rev)) {
     zone[0] = t_b - 0.5 * rev, zone[1] = t_b + 0.5 * rev;
     exact(-1, zone[0], zone[1]);
     for (int side = 0; side < 2; ++side) {
@@ -333,10 +341,16 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
           t_prev += dir * rev, at_root = false;
         };
         const double far = t_prev + dir * 1.1 * rev;
-        const auto ahead = geo.span(std::min(t_prev, far), std::max(t_prev, far));
-        if (!ahead.monotone(w)) {
-          solve_revolution();
-          continue;
+        // Where the phase is monotone all along (most nodes), no span is asked: the step's turn
+        // is read exactly from its probes below.
+        const bool easy = at_root && geo.monotone_within(rho_prev + v_plan * 1.1 * rev);
+        PassageGeometry::Span ahead{};
+        if (!easy) {
+          ahead = geo.span(std::min(t_prev, far), std::max(t_prev, far));
+          if (!ahead.monotone(w)) {
+            solve_revolution();
+            continue;
+          }
         }
         double guess = t_prev + dir * rev, gap = 0;
         if (at_root) {
@@ -371,8 +385,10 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
           ok = true;  // behind the edge: the exact solve has it already
         } else if (!std::isnan(t) && moved > (at_root ? 0.25 * rev : 0)) {
           if (moved <= 1.1 * rev) {
-            ok = ahead.top(w) * moved < need + kTwoPi || geo.turned(need, t_prev, q_prev, t, q);
-          } else if (geo.monotone(far, t)) {
+            ok = (!easy && ahead.top(w) * moved < need + kTwoPi) ||
+                 geo.turned(need, t_prev, q_prev, t, q);
+          } else if ((at_root && geo.monotone_within(rho_prev + v_plan * moved)) ||
+                     geo.monotone(far, t)) {
             const Probe q_far = geo.probe(tooth, far);
             ok = geo.turned(need, t_prev, q_prev, far, q_far, t, q);
           }
