@@ -628,11 +628,10 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
     End lo, hi;
   };
   const double w = std::abs(s_.omega), min_len = 1e-10 * s_.rev;
-  // (`below` falls as crossings are found.) A piece whose ball stays within round-off of `below`
-  // holds nothing lower that counts: next
-  // to the tip (a point of every edge, and the lowest of the ball near the axis) the pieces are
-  // otherwise halved down to kOnAxis before their floor, equal to the tip's height but for
-  // round-off, rules them out.
+  // A piece whose ball stays within round-off of `below` (which falls as crossings are found)
+  // holds nothing lower that counts. Next to the tip (a point of every edge, and the ball's
+  // lowest near the axis) the pieces' floor equals the tip's height but for round-off: without
+  // the tie they were halved down to kOnAxis before anything ruled them out.
   auto above = [&](double floor) {
     return floor >= below - 16 * std::numeric_limits<double>::epsilon() * (std::abs(below) + s_.R);
   };
