@@ -6,10 +6,10 @@
 //
 // With q the point's offset from the axis, D = q . q', M = q x q' (so D^2 + M^2 = rho^2 v^2):
 // G' = omega + Psi_u u' - az', u' = D / rho^2, az' = M / rho^2, and
-// G'' = Psi_uu u'^2 + [Psi_u (M^2 - D^2) - 2 M D] / rho^4 + (Psi_u q . q'' - q x q'') / rho^2
-// (up to the signs of D and M, which the bound does not need). The bracket is the real and
-// imaginary parts of (D + i M)^2, taken with (-Psi_u, -1), so at most S rho^2 v^2, S =
-// sqrt(1 + Psi_u^2); the last term likewise at most S rho |q''|. Hence
+// G'' = Psi_uu u'^2 + [Psi_u (M^2 - D^2) + 2 M D] / rho^4 + (Psi_u q . q'' - q x q'') / rho^2
+// (D' = |q'|^2 + q . q'', M' = q x q''). The bracket is the real and imaginary parts of
+// (D + i M)^2 taken with (-Psi_u, 1), so at most S rho^2 v^2, S = sqrt(1 + Psi_u^2); the last
+// term likewise at most S rho |q''|. Hence
 // |G''| <= (k2 + S) v^2 / rho_lo^2 + S accel / rho_lo: for a straight pass at distance d with no
 // lag, v^2 / d^2, where the true largest is 0.65 v^2 / d^2 (at 0.58 d either side of the closest
 // approach). tests/plugins/phase_curvature_test.cpp samples G'' along random paths against it.

@@ -1,8 +1,9 @@
 // tooth_passage's centre table: the length of the correction's path in plan over a span (from
 // prefix sums, the end pieces in proportion), which bounds how far a correction's jerks can turn
 // the phase over a piece (PassageGeometry::Span::sweep), checked against the path summed here in
-// small steps: never shorter (a bound), and no longer than round-off. And the correction's box
-// and top speeds over a span (one range-table query), checked against a scan of its samples.
+// small steps: never shorter (a bound), and no longer than round-off. The correction's box and
+// top speeds over a span (one range-table query), checked against a scan of its samples. And the
+// nominal centre's lowest height over a span, the exact windows' floor, against a dense scan.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <memory>
