@@ -432,17 +432,20 @@ class PassageGeometry {
   // G'(t), the phase's rate (rad/s): the same for every tooth. `dv` is the correction's slope on
   // the side of t asked for (sample's is the right: a piece ending at a knot asks for the left).
   double rate(const Sample& at, const Vec3& dv) const;
-  // Whether the phase is monotone, G' within (0, 2 omega), wherever the node stays within rho_max
-  // of the axis, for a reason that holds all along the window: a vertical tool, the node farther
-  // from the window's line than S v / omega (PlanLine; S from the lag's slope over the ball to
-  // 0.95 R: gap_lag), and rho_max within 0.95 R. Then a step's turn is also exact from its
+  // Whether the phase is monotone, G' within (0, 2 omega), over `duration` from (or to) a time when
+  // the node is `rho` from the axis, for a reason that holds all along the window: a vertical
+  // tool, the node farther from the window's line than S v / omega (PlanLine; S from the lag's
+  // slope over the ball to 0.95 R: gap_lag), and within 0.95 R of the axis all that time (it
+  // moves away at most at the centre's top speed v). Then a step's turn is also exact from its
   // probes (advance: the centre keeps to the line's strip, a convex region that leaves the node
   // out), and no span need be asked: most nodes of every scene, all but those within about
   // v / omega of a pass's line.
-  bool monotone_within(double rho_max) const {
-    return !tilted_ && !turning_ && rho_max <= 0.95 * s_.R &&
-           line_gap_ >= 1.01 * s_.gap_lag * s_.plan_line[win_].speed / std::abs(s_.omega);
+  bool monotone_from(double rho, double duration) const {
+    const double v = s_.plan_line[win_].speed;
+    return far_from_line() && rho + v * duration <= 0.95 * s_.R;
   }
+  // The same within `duration` either side of t.
+  bool monotone_around(double t, double duration) const;
   // Whether the phase is certainly monotone on [a, b] by the crude bound alone.
   bool monotone(double a, double b) const {
     return span(std::min(a, b), std::max(a, b)).monotone(std::abs(s_.omega));
@@ -522,6 +525,12 @@ class PassageGeometry {
     return step > 0
                ? static_cast<double>(s_.path->correction_samples(src_).values.size() - 1) * step
                : -INFINITY;
+  }
+  // monotone_from's conditions other than the distance from the axis: a vertical tool, the node
+  // farther from the window's line than S v / omega. next_gap settles most nodes by it too.
+  bool far_from_line() const {
+    return !tilted_ && !turning_ &&
+           line_gap_ >= 1.01 * s_.gap_lag * s_.plan_line[win_].speed / std::abs(s_.omega);
   }
   // Where on the chord from a to b (0 to 1, in plan) the node's foot lies.
   double nearest_on_chord(const Vec3& a, const Vec3& b) const {

@@ -6,9 +6,6 @@
 namespace topomill::plugins {
 
 namespace {
-double sq(double x) {
-  return x * x;
-}
 // Whether a corrected passage, solved at an earlier node, is still at or above `target` at x by
 // its fall-rate bound (RowSweep::fall_rate).
 template <class Root>
@@ -250,12 +247,7 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
   // The zone around t_b solved for all teeth: [zone[0], zone[1]], empty when the phase is proven
   // monotone around t_b (then each tooth's first crossing is followed from the last node's).
   double zone[2] = {t_b, t_b};
-  // (The node moves from the axis at most at the centre's top speed in plan.)
-  const double v_plan = s_.plan_line[geo.window()].speed;
-  const Vec3 c_b = s_.centre[geo.window()](t_b);
-  const double rho_b = std::sqrt(sq(geo.x() - c_b.x()) + sq(geo.y() - c_b.y()));
-  if (!geo.monotone_within(rho_b + v_plan * 0.8 * rev) &&
-      !geo.monotone(t_b - 0.8 * rev, t_b + 0.8 * rev)) {
+  if (!geo.monotone_around(t_b, 0.8 * rev) && !geo.monotone(t_b - 0.8 * rev, t_b + 0.8 * rev)) {
     zone[0] = t_b - 0.5 * rev, zone[1] = t_b + 0.5 * rev;
     exact(-1, zone[0], zone[1]);
     for (int side = 0; side < 2; ++side) {
@@ -343,7 +335,7 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
         const double far = t_prev + dir * 1.1 * rev;
         // Where the phase is monotone all along (most nodes), no span is asked: the step's turn
         // is read exactly from its probes below.
-        const bool easy = at_root && geo.monotone_within(rho_prev + v_plan * 1.1 * rev);
+        const bool easy = at_root && geo.monotone_from(rho_prev, 1.1 * rev);
         PassageGeometry::Span ahead{};
         if (!easy) {
           ahead = geo.span(std::min(t_prev, far), std::max(t_prev, far));
@@ -387,8 +379,7 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
           if (moved <= 1.1 * rev) {
             ok = (!easy && ahead.top(w) * moved < need + kTwoPi) ||
                  geo.turned(need, t_prev, q_prev, t, q);
-          } else if ((at_root && geo.monotone_within(rho_prev + v_plan * moved)) ||
-                     geo.monotone(far, t)) {
+          } else if ((at_root && geo.monotone_from(rho_prev, moved)) || geo.monotone(far, t)) {
             const Probe q_far = geo.probe(tooth, far);
             ok = geo.turned(need, t_prev, q_prev, far, q_far, t, q);
           }
