@@ -82,3 +82,70 @@ TEST_CASE("phase curvature: the bound holds G'' sampled along random paths", "[t
     }
   }
 }
+
+// phase_range: G over a piece from its ends' values and rates and |G''| <= c. Against functions
+// whose |G''| is at most c, sampled densely (among them caps that peak inside the piece, which
+// the ends alone would miss): every sample within the range. And it is the tightest such bound:
+// a cap of curvature c meets it at its peak, a bowl at its bottom.
+TEST_CASE("phase curvature: the range from the ends holds G and is met by a cap",
+          "[tooth_passage]") {
+  using topomill::plugins::phase_range;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int q = 0; q < 2000; ++q) {
+    const double h = 1e-3 * (1 + std::abs(unit(rng))), c = 1e5 * (0.1 + std::abs(unit(rng)));
+    // G(s) = g0 + r s + a sin(k s + phi) + b s^2 / 2, |G''| <= a k^2 + |b| <= c.
+    const double share = std::abs(unit(rng)), k = 3000 * std::abs(unit(rng)) + 1;
+    const double a = share * c / (k * k), b = (1 - share) * c * unit(rng);
+    const double g0 = unit(rng), r = 500 * unit(rng), phi = 3 * unit(rng);
+    auto G = [&](double s) { return g0 + r * s + a * std::sin(k * s + phi) + 0.5 * b * s * s; };
+    auto dG = [&](double s) { return r + a * k * std::cos(k * s + phi) + b * s; };
+    const auto [lo, hi] = phase_range(G(0), G(h), dG(0), dG(h), c, h);
+    double g_lo = INFINITY, g_hi = -INFINITY;
+    for (int i = 0; i <= 2000; ++i) {
+      const double g = G(h * i / 2000);
+      g_lo = std::min(g_lo, g), g_hi = std::max(g_hi, g);
+    }
+    INFO("piece " << q << ": sampled [" << g_lo << ", " << g_hi << "], range [" << lo << ", " << hi
+                  << "]");
+    CHECK(lo <= g_lo + 1e-12);
+    CHECK(g_hi <= hi + 1e-12);
+  }
+  // The extremal functions: G'' = +-c switched twice (bang-bang), which come closest to the bound.
+  for (int q = 0; q < 2000; ++q) {
+    const double h = 1e-3, c = 1e5 * (0.1 + std::abs(unit(rng)));
+    const int n = 2000;
+    int s1 = static_cast<int>(n * std::abs(unit(rng))),
+        s2 = static_cast<int>(n * std::abs(unit(rng)));
+    if (s1 > s2) std::swap(s1, s2);
+    const double sign = unit(rng) < 0 ? -1.0 : 1.0, dt = h / n;
+    double g = unit(rng), r = 300 * unit(rng);
+    const double ga = g, ra = r;
+    double g_lo = g, g_hi = g;
+    for (int i = 0; i < n; ++i) {
+      const double a = (i < s1 || i >= s2 ? sign : -sign) * c;
+      g += r * dt + 0.5 * a * dt * dt, r += a * dt;
+      g_lo = std::min(g_lo, g), g_hi = std::max(g_hi, g);
+    }
+    const auto [lo, hi] = phase_range(ga, g, ra, r, c, h);
+    INFO("bang-bang " << q << ": sampled [" << g_lo << ", " << g_hi << "], range [" << lo << ", "
+                      << hi << "]");
+    CHECK(lo <= g_lo + 1e-12);
+    CHECK(g_hi <= hi + 1e-12);
+  }
+  const double h = 2e-3, c = 4e5;
+  for (const double s0 : {0.3e-3, 1e-3, 1.6e-3, 2.5e-3}) {
+    // A cap of curvature c peaking at s0 (inside but the last): its top exactly the peak, its
+    // bottom exactly the lower end; the bowl that mirrors it, the same mirrored.
+    auto G = [&](double s) { return 0.7 - 0.5 * c * (s - s0) * (s - s0); };
+    auto dG = [&](double s) { return -c * (s - s0); };
+    const double peak = s0 < h ? 0.7 : G(h);
+    const auto [lo, hi] = phase_range(G(0), G(h), dG(0), dG(h), c, h);
+    INFO("cap at " << s0 << ": range [" << lo << ", " << hi << "]");
+    CHECK(std::abs(hi - peak) < 1e-12);
+    CHECK(std::abs(lo - std::min(G(0), G(h))) < 1e-12);
+    const auto [lo2, hi2] = phase_range(-G(0), -G(h), -dG(0), -dG(h), c, h);
+    CHECK(std::abs(hi2 + lo) < 1e-12);
+    CHECK(std::abs(lo2 + hi) < 1e-12);
+  }
+}
