@@ -101,11 +101,13 @@ class CentreTable {
 
   Vec3 operator()(double t) const {
     Vec3 c = nominal(t);
-    if (corrected()) c += correction_->at(t);
+    if (corrected()) c += correction(t);
     return c;
   }
   // Whether the pass has a correction.
   bool corrected() const { return !correction_->values.empty(); }
+  // The correction at t (zero without one): operator() less nominal().
+  Vec3 correction(double t) const { return correction_->at(t); }
 
   Vec3 nominal(double t) const {
     const double u = (t - t0_) * inv_dt_;

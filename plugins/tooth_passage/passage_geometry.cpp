@@ -291,8 +291,9 @@ double PassageGeometry::crossing(int tooth, double t, double& slope, Probe& last
   return t;
 }
 
-PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) const {
-  if (tilted_) return span_tilted(sa, sb);
+PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb,
+                                            const Vec3* na_known, const Vec3* nb_known) const {
+  if (tilted_) return span_tilted(sa, sb, na_known, nb_known);
   const double a = sa.t, b = sb.t;
   const double step = s_.path->correction_step(src_);
   const double A = table_.accel_xy(), h = b - a;
@@ -324,7 +325,8 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb) 
     // convex region, as advance() needs).
     const CorrectionBounds box = table_.correction_bounds(a, b);
     const Vec3 &lo = box.lo, &hi = box.hi, mid = 0.5 * (lo + hi);
-    const Vec3 na = table_.nominal(a), nb = table_.nominal(b), ca = na + mid, cb = nb + mid;
+    const Vec3 na = na_known ? *na_known : table_.nominal(a);
+    const Vec3 nb = nb_known ? *nb_known : table_.nominal(b), ca = na + mid, cb = nb + mid;
     z_lo = table_.nominal_lowest_z(a, b, na.z(), nb.z()) + lo.z();
     const double grow = A * h * h / 8 + 0.5 * norm(hi.x() - lo.x(), hi.y() - lo.y()) + 1e-12;
     const double u = nearest_on_chord(ca, cb);
@@ -423,7 +425,9 @@ bool PassageGeometry::lifted(double t, const Vec3& c, const Vec3& v, Vec3& p, Ve
 // moved by the correction's box, as for a vertical tool) lifts into the chord between its ends'
 // lifts thickened by the lift's bend over it (R^2 len^2 / 8 h^3 for a straight plan segment of
 // length len) and L times the region's own thickness. The turn by the frame is a rotation.
-PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sample& sb) const {
+PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sample& sb,
+                                                   const Vec3* na_known,
+                                                   const Vec3* nb_known) const {
   const double a = sa.t, b = sb.t, h_t = b - a;
   const double step = s_.path->correction_step(src_);
   const double A = table_.accel_xy();
@@ -439,7 +443,8 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
   } else {
     const CorrectionBounds box = table_.correction_bounds(a, b);
     const Vec3 &lo = box.lo, &hi = box.hi, mid = 0.5 * (lo + hi);
-    const Vec3 na = table_.nominal(a), nb = table_.nominal(b);
+    const Vec3 na = na_known ? *na_known : table_.nominal(a);
+    const Vec3 nb = nb_known ? *nb_known : table_.nominal(b);
     ca = na + mid, cb = nb + mid;
     z_lo = table_.nominal_lowest_z(a, b, na.z(), nb.z()) + lo.z();
     grow = A * h_t * h_t / 8 + 0.5 * norm(hi.x() - lo.x(), hi.y() - lo.y()) + 1e-12;
@@ -629,6 +634,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
     Sample at;
     Probe q;      // tooth 0's
     double rate;  // NaN until needed
+    Vec3 n;       // the nominal centre (span's, where knots lie inside: not read from the table)
   };
   struct Piece {
     End lo, hi;
@@ -645,8 +651,9 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   // Tooth j's phase is tooth 0's turned by its angle: one probe serves all.
   auto offset = [&](int j) { return s_.tooth_angle[j] - s_.tooth_angle[0]; };
   auto end = [&](double t) {
-    const Sample at = sample(t);
-    return End{at, probe(0, t, at.c), NAN};
+    Vec3 n;
+    const Sample at = sample(t, n);
+    return End{at, probe(0, t, at.c), NAN, n};
   };
   // The rate at an end on the side of a piece whose correction slope is dv (kept: an end is
   // shared by two pieces, on the same slope except at a knot).
@@ -678,26 +685,24 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   thread_local std::vector<Piece> kept;
   std::vector<Piece> stack;
   stack.swap(kept);
-  stack.assign(1, Piece{end(a), end(b)});
-  // A stop request is honoured here too: on a steep face one node's pieces can take a minute.
-  while (!stack.empty() && !s_.stopped()) {
-    Piece p = stack.back();
-    stack.pop_back();
+  stack.clear();
+  // Whether piece p is settled (its crossings, if any, found); false when it must be halved.
+  auto settle = [&](Piece& p) {
     const double h = p.hi.at.t - p.lo.at.t;
-    const Span sp = span(p.lo.at, p.hi.at);
+    const Span sp = span(p.lo.at, p.hi.at, &p.lo.n, &p.hi.n);
     if (sp.rho_hi <= kOnAxis) {
       // The axis within kOnAxis of the node all along: the tip, a point of every edge, cuts it
       // here (g jumps by pi rather than crossing zero, and no subdivision settles it).
       found(first, 0.5 * (p.lo.at.t + p.hi.at.t));
-      continue;
+      return true;
     }
     const double reach = sp.turn(w, h);
     bool reachable = false;
     for (int j = first; j <= last && !reachable; ++j)
       reachable =
           std::abs(wrap(p.lo.q.g + offset(j))) + std::abs(wrap(p.hi.q.g + offset(j))) <= reach;
-    if (!reachable) continue;
-    if (sp.rho_lo > rho_hi_ || sp.rho_hi < rho_lo_ || above(floor_of(p, sp))) continue;
+    if (!reachable) return true;
+    if (sp.rho_lo > rho_hi_ || sp.rho_hi < rho_lo_ || above(floor_of(p, sp))) return true;
     // Monotone: turn < |omega|, or G' of one sign at both ends with room for the curvature (G'
     // is then at least half their sum less the curvature's fall between).
     bool mono = sp.monotone(w) || sp.falls(w);
@@ -712,7 +717,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
         bool level = false;
         for (int j = first; j <= last && !level; ++j)
           level = std::ceil((v_lo - 1e-9 + offset(j)) / kTwoPi) * kTwoPi - offset(j) <= v_hi + 1e-9;
-        if (!level) continue;
+        if (!level) return true;
       }
     }
     if (mono) {
@@ -723,22 +728,34 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
       for (int j = first; j <= last; ++j)
         for (double m = std::ceil((v_lo + offset(j)) / kTwoPi); m * kTwoPi - offset(j) <= v_hi; ++m)
           found(j, solve_level(p.lo.at.t, p.lo.q, p.hi.at.t, g_hi, m * kTwoPi - offset(j)));
-      continue;
+      return true;
     }
     if (h < min_len) {
       for (int j = first; j <= last; ++j) {
         const double ga = wrap(p.lo.q.g + offset(j)), gb = wrap(p.hi.q.g + offset(j));
         if (crosses(ga, gb)) found(j, solve_bracket(j, p.lo.at.t, p.hi.at.t, ga, gb));
       }
+      return true;
+    }
+    return false;
+  };
+  // Depth first, the piece in hand kept out of the stack (a push and a pop of two ends saved
+  // at each halving, and the rate at the end it keeps).
+  Piece p{end(a), end(b)};
+  // A stop request is honoured here too: on a steep face one node's pieces can take a minute.
+  while (!s_.stopped()) {
+    if (!settle(p)) {
+      const End mid = end(split_time(p.lo.at.t, p.hi.at.t));
+      // The half nearer the axis first: it holds the lowest crossings, which prune the other.
+      if (p.lo.q.rho < p.hi.q.rho)
+        stack.push_back(Piece{mid, p.hi}), p.hi = mid;
+      else
+        stack.push_back(Piece{p.lo, mid}), p.lo = mid;
       continue;
     }
-    const End mid = end(split_time(p.lo.at.t, p.hi.at.t));
-    // The half nearer the axis first: it holds the lowest crossings, which prune the other.
-    Piece left{p.lo, mid}, right{mid, p.hi};
-    if (p.lo.q.rho < p.hi.q.rho)
-      stack.push_back(right), stack.push_back(left);
-    else
-      stack.push_back(left), stack.push_back(right);
+    if (stack.empty()) break;
+    p = stack.back();
+    stack.pop_back();
   }
   kept.swap(stack);
 }

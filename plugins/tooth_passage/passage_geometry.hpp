@@ -237,6 +237,12 @@ class PassageGeometry {
   Sample sample(double t) const {
     return {t, table_(t), table_.nominal_velocity(t), table_.correction_slope(t)};
   }
+  // The same, and the nominal centre at t (the centre less the correction) into `nominal`.
+  Sample sample(double t, Vec3& nominal) const {
+    nominal = table_.nominal(t);
+    return {t, table_.corrected() ? Vec3(nominal + table_.correction(t)) : nominal,
+            table_.nominal_velocity(t), table_.correction_slope(t)};
+  }
 
   Probe probe(int tooth, double t) const { return probe(tooth, t, table_(t)); }
   Probe probe(int tooth, double t, const Vec3& c) const {
@@ -406,7 +412,9 @@ class PassageGeometry {
   // Rigorous bounds over [a, b]: from the chord of the centre's motion (less its sagitta) when no
   // correction knot lies inside, else from the nominal chord moved by the correction's box there.
   Span span(double a, double b) const { return span(sample(a), sample(b)); }
-  Span span(const Sample& a, const Sample& b) const;
+  // `na`, `nb`: the nominal centres at a and b where the caller has them (else the table's).
+  Span span(const Sample& a, const Sample& b, const Vec3* na = nullptr,
+            const Vec3* nb = nullptr) const;
   // The bounds from the moving point's path over a piece: its distance from the axis within
   // [rho_lo, rho_hi], its speed at most v, its moment about the axis (q x v, v = -q') within
   // [c_lo, c_hi], its acceleration at most `accel` (infinite curvature bound with a knot inside),
@@ -414,7 +422,7 @@ class PassageGeometry {
   Span bound_rates(double rho_lo, double rho_hi, double v, double c_lo, double c_hi, double accel,
                    bool knot_inside, double length = INFINITY) const;
   // A tilted tool's: the ball point over the node in the tool frame, lifted from the plan.
-  Span span_tilted(const Sample& a, const Sample& b) const;
+  Span span_tilted(const Sample& a, const Sample& b, const Vec3* na, const Vec3* nb) const;
   // The ball point over the node relative to the centre in the tool frame, and its velocity, for
   // the centre at c moving at v (plan offset q = node - c) at time t (the frame's, which may
   // turn): false off the ball.
