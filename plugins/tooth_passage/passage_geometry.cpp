@@ -299,7 +299,7 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb,
   const double A = table_.accel_xy(), h = b - a;
   // rho's range, the centre's top speed in plan, and the range [c_lo, c_hi] of the moment of its
   // velocity about the node, q x v (q the node's offset from the axis).
-  double rho_lo, rho_hi, v, c_lo, c_hi, length = INFINITY, z_lo = NAN;
+  double rho_lo, rho_hi, v, c_lo, c_hi, length = INFINITY, box_z_lo = NAN;
   const double first_knot = step > 0 ? std::max(0.0, std::floor(a / step) + 1) * step : INFINITY;
   const bool knot_inside = step > 0 && first_knot < b && first_knot <= last_knot();
   if (!knot_inside) {
@@ -327,7 +327,7 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb,
     const Vec3 &lo = box.lo, &hi = box.hi, mid = 0.5 * (lo + hi);
     const Vec3 na = na_known ? *na_known : table_.nominal(a);
     const Vec3 nb = nb_known ? *nb_known : table_.nominal(b), ca = na + mid, cb = nb + mid;
-    z_lo = table_.nominal_lowest_z(a, b, na.z(), nb.z()) + lo.z();
+    box_z_lo = lo.z();
     const double grow = A * h * h / 8 + 0.5 * norm(hi.x() - lo.x(), hi.y() - lo.y()) + 1e-12;
     const double u = nearest_on_chord(ca, cb);
     const double ax = x_ - ca.x(), ay = y_ - ca.y(), bx = x_ - cb.x(), by = y_ - cb.y();
@@ -340,7 +340,7 @@ PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb,
     length = s_.nominal_speed[win_].first * h + table_.correction_length(a, b);
   }
   Span out = bound_rates(rho_lo, rho_hi, v, c_lo, c_hi, A, knot_inside, length);
-  out.plan_lo = rho_lo, out.z_lo = z_lo;
+  out.plan_lo = rho_lo, out.box_z_lo = box_z_lo;
   return out;
 }
 
@@ -435,7 +435,7 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
   const bool knot_inside = step > 0 && first_knot < b && first_knot <= last_knot();
   // The plan region first: its chord, thickness, the plan offset's range and top speed.
   Vec3 ca, cb;
-  double grow, v_plan, z_lo = NAN;
+  double grow, v_plan, box_z_lo = NAN;
   if (!knot_inside) {
     ca = sa.c, cb = sb.c, grow = A * h_t * h_t / 8 + 1e-12;
     const Vec3 va = sa.v + sa.dv, vb = sb.v + sa.dv;
@@ -446,7 +446,7 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
     const Vec3 na = na_known ? *na_known : table_.nominal(a);
     const Vec3 nb = nb_known ? *nb_known : table_.nominal(b);
     ca = na + mid, cb = nb + mid;
-    z_lo = table_.nominal_lowest_z(a, b, na.z(), nb.z()) + lo.z();
+    box_z_lo = lo.z();
     grow = A * h_t * h_t / 8 + 0.5 * norm(hi.x() - lo.x(), hi.y() - lo.y()) + 1e-12;
     v_plan = s_.nominal_speed[win_].first + box.speed_xy;
   }
@@ -501,7 +501,7 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
   }
   const double rho_lo = std::max(0.0, chord_lo - thick), rho_hi = ends_hi + thick;
   Span out = bound_rates(rho_lo, rho_hi, v, c_lo, c_hi, accel, knot_inside, length);
-  out.plan_lo = plan_lo, out.z_lo = z_lo;
+  out.plan_lo = plan_lo, out.box_z_lo = box_z_lo;
   return out;
 }
 
@@ -666,11 +666,11 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   auto floor_of = [&](const Piece& p, const Span& sp) {
     if (sp.plan_lo >= s_.R) return double(INFINITY);
     const double a = p.lo.at.t, b = p.hi.at.t;
-    // (The ends' nominal heights are their samples' on an ideal path.)
-    const double z = !std::isnan(sp.z_lo) ? sp.z_lo
-                     : table_.corrected()
-                         ? table_.lowest_z(a, b)
-                         : table_.nominal_lowest_z(a, b, p.lo.at.c.z(), p.hi.at.c.z());
+    // The nominal centre's lowest, and the correction's (its box's, where span read it).
+    const double shift = !std::isnan(sp.box_z_lo) ? sp.box_z_lo
+                         : table_.corrected()     ? table_.correction_bounds(a, b).lo.z()
+                                                  : 0.0;
+    const double z = table_.nominal_lowest_z(a, b, p.lo.n.z(), p.hi.n.z()) + shift;
     return z - std::sqrt(s_.R2 - sp.plan_lo * sp.plan_lo);
   };
   auto found = [&](int tooth, double t) {

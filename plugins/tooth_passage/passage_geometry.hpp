@@ -397,9 +397,10 @@ class PassageGeometry {
     // correction's jerk makes the top speed, and so fall and rise, large, one fast piece of it
     // moves the point only by its own length. +inf where the length is not known.
     double sweep = INFINITY;
-    // The centre's lowest height over the piece, where span() read the correction's box (a knot
-    // inside): the ball's floor there. NaN when not read.
-    double z_lo = NAN;
+    // The correction's lowest height over the piece, where span() read its box (a knot inside):
+    // with the nominal centre's lowest, the ball's floor there (crossings_in asks for it only
+    // where the piece's phase can reach a crossing). NaN when not read.
+    double box_z_lo = NAN;
     bool monotone(double w) const { return fall < w && jump == 0; }
     // Whether G turns against the spindle all along (G' <= w + rise < 0): where the axis passes
     // close on the side where the node's azimuth turns against the spindle faster than it, G

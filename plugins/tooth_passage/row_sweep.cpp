@@ -32,6 +32,7 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
   win_pass_ = kNone;
   for (auto& st : state_) {
     st.active = st.have_bottom = false;
+    st.wait = st.waited = 0;
     st.floor_x = NAN;
     st.stop[0] = st.stop[1] = NAN;
     for (auto& r : st.roots) r.clear();
@@ -162,8 +163,15 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
   // from the start, the exact windows rule out every piece next to that instant whose ball
   // cannot go lower (on a level pass, all of them) instead of halving towards it.
   if (ideal) best = std::min(best, tip_cut());
-  double h = ideal ? walk(geo, st, t_b, best, counts)
-                   : walk_corrected(geo, st, t_b, best, counts, irregular);
+  double h = INFINITY;
+  if (ideal) {
+    h = walk(geo, st, t_b, best, counts);
+  } else if (st.wait > 0) {
+    --st.wait, irregular = true;  // irregular at the last nodes: the reference walk at once
+  } else {
+    h = walk_corrected(geo, st, t_b, best, counts, irregular);
+    st.waited = irregular ? std::min(2 * st.waited + 1, kMaxWait) : 0, st.wait = st.waited;
+  }
   if (s_.stopped()) return INFINITY;  // a walk cut short is not irregular: the map is discarded
   if (irregular) {
     // The reference's own walk, from the reference's own bottom (which the corrected branch

@@ -45,7 +45,14 @@ class RowSweep {
     double floor_slope = 0;                // ideal: how fast that bottom can fall along the row
     std::vector<std::vector<Root>> roots;  // per tooth, the last node's crossings
     double stop[2] = {NAN, NAN};  // corrected: beyond these the floor is too high (earlier, later)
+    // Corrected: after a walk found the pass irregular, the next `wait` nodes of the row go to
+    // the reference walk at once (near the axis with effects a pass is irregular at node after
+    // node, and the walk found that out only after solving most of its passages: 11 % of the
+    // instructions at lambda 0 with vibration and deflection); each failure again doubles the
+    // wait, up to kMaxWait nodes, and a walk that gets through ends it.
+    int wait = 0, waited = 0;
   };
+  static constexpr int kMaxWait = 32;
 
   double pass_height(std::size_t p, double x, double y, double best, bool& can_lower,
                      NodeCounts& counts);
