@@ -710,8 +710,9 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
       const double ra = rate_of(p.lo, p.lo.at.dv), rb = rate_of(p.hi, p.lo.at.dv);
       mono = (ra > 0) == (rb > 0) && 0.5 * (std::abs(ra) + std::abs(rb) - sp.curve * h) > 0;
       if (!mono) {
-        // A turn-back inside: G stays within the curvature's parabolas from its ends
-        // (phase_range); where no tooth's level lies between them, no crossing does.
+        // A turn-back inside: G stays within what its ends' phases and rates allow under the
+        // curvature bound (phase_range); where no tooth's level lies in that range, no crossing
+        // does.
         const double g_lo = p.lo.q.g, g_hi = g_lo + advance(p.lo.at.t, p.lo.q, p.hi.at.t, p.hi.q);
         const auto [v_lo, v_hi] = phase_range(g_lo, g_hi, ra, rb, sp.curve, h);
         bool level = false;
