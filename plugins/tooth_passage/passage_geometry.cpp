@@ -650,6 +650,8 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   const int first = only < 0 ? 0 : only, last = only < 0 ? s_.teeth - 1 : only;
   // Tooth j's phase is tooth 0's turned by its angle: one probe serves all.
   auto offset = [&](int j) { return s_.tooth_angle[j] - s_.tooth_angle[0]; };
+  // The first whole turn m at or above phase v for tooth j: its level is m 2 pi - offset(j).
+  auto first_turn = [&](double v, int j) { return std::ceil((v + offset(j)) / kTwoPi); };
   auto end = [&](double t) {
     Vec3 n;
     const Sample at = sample(t, n);
@@ -717,7 +719,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
         const auto [v_lo, v_hi] = phase_range(g_lo, g_hi, ra, rb, sp.curve, h);
         bool level = false;
         for (int j = first; j <= last && !level; ++j)
-          level = std::ceil((v_lo - 1e-9 + offset(j)) / kTwoPi) * kTwoPi - offset(j) <= v_hi + 1e-9;
+          level = first_turn(v_lo - 1e-9, j) * kTwoPi - offset(j) <= v_hi + 1e-9;
         if (!level) return true;
       }
     }
@@ -727,7 +729,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
       const double g_lo = p.lo.q.g, g_hi = g_lo + advance(p.lo.at.t, p.lo.q, p.hi.at.t, p.hi.q);
       const double v_lo = std::min(g_lo, g_hi), v_hi = std::max(g_lo, g_hi);
       for (int j = first; j <= last; ++j)
-        for (double m = std::ceil((v_lo + offset(j)) / kTwoPi); m * kTwoPi - offset(j) <= v_hi; ++m)
+        for (double m = first_turn(v_lo, j); m * kTwoPi - offset(j) <= v_hi; ++m)
           found(j, solve_level(p.lo.at.t, p.lo.q, p.hi.at.t, g_hi, m * kTwoPi - offset(j)));
       return true;
     }

@@ -237,7 +237,10 @@ class PassageGeometry {
   Sample sample(double t) const {
     return {t, table_(t), table_.nominal_velocity(t), table_.correction_slope(t)};
   }
-  // The same, and the nominal centre at t (the centre less the correction) into `nominal`.
+  // The same, and the nominal centre at t (the centre less the correction) into `nominal`: for
+  // the exact windows' ends, whose spans need it. (sample(t) written as this one with the nominal
+  // discarded cost 1.7 % more instructions at lambda 30 and 2.5 % at lambda 0: every Newton
+  // probe builds a sample.)
   Sample sample(double t, Vec3& nominal) const {
     nominal = table_.nominal(t);
     return {t, table_.corrected() ? Vec3(nominal + table_.correction(t)) : nominal,
