@@ -629,7 +629,7 @@ double PassageGeometry::split_time(double lo, double hi) const {
 // middle; below a 1e-10 revolution the sign change alone decides (a touch of the edge no grid can
 // resolve).
 void PassageGeometry::crossings_in(int only, double a, double b, double& below,
-                                   std::vector<Crossing>& roots) const {
+                                   std::vector<Crossing>& roots, Probe* ends) const {
   struct End {
     Sample at;
     Probe q;      // tooth 0's
@@ -745,6 +745,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   // Depth first, the piece in hand kept out of the stack (a push and a pop of two ends saved
   // at each halving, and the rate at the end it keeps).
   Piece p{end(a), end(b)};
+  if (ends) ends[0] = p.lo.q, ends[1] = p.hi.q;
   // A stop request is honoured here too: on a steep face one node's pieces can take a minute.
   while (!s_.stopped()) {
     if (!settle(p)) {

@@ -485,14 +485,21 @@ class PassageGeometry {
   // rest may be left out), exactly: [a, b] is cut in halves until on each piece the phase is
   // proven monotone and known unwrapped (its crossings solved in their brackets), or proven not
   // to reach a crossing, or the ball proven too high. `below` comes back lowered by the crossings
-  // found under the ball.
+  // found under the ball. `ends`, where given, gets tooth 0's probes at a and b (any tooth's is
+  // that one turned by the tooth's angle: turned_to).
   struct Crossing {
     int tooth;
     double t;
     Probe q;  // the tooth's probe there
   };
-  void crossings_in(int tooth, double a, double b, double& below,
-                    std::vector<Crossing>& roots) const;
+  void crossings_in(int tooth, double a, double b, double& below, std::vector<Crossing>& roots,
+                    Probe* ends = nullptr) const;
+  // Tooth 0's probe q as tooth j's (the same but for the phase, turned by the tooth's angle).
+  Probe turned_to(const Probe& q, int j) const {
+    Probe out = q;
+    out.g = wrap(q.g + s_.tooth_angle[j] - s_.tooth_angle[0]);
+    return out;
+  }
   // Where crossings_in cuts a piece [lo, hi]: at a correction knot where there is one inside (G'
   // jumps only at knots, so the halves' bounds then hold without one), and of the knots in the
   // piece's middle half at the one whose index has the most trailing zeros: the pieces then keep

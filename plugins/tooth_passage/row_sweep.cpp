@@ -225,10 +225,11 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
 // node's), as long as the phase is proven monotone between them (PassageGeometry::next_crossing).
 // Where it is not (the axis passes close to the node: its azimuth turns faster than the spindle
 // and a passage may cross it three times), that revolution is solved exactly in place
-// (crossings_in) and the walk goes on from its far edge. The revolutions around t_b that cannot
-// be followed (the axis's closest approach) are solved first, for all teeth at once (the teeth's
-// phases differ by a constant: one subdivision serves them all), and the teeth are followed
-// from that zone's edges.
+// (crossings_in) and the walk goes on from its far edge. The time around t_b that cannot be
+// followed (the axis's closest approach) is solved first, for all teeth at once (the teeth's
+// phases differ by a constant: one subdivision serves them all): a zone reaching out by eighths
+// of a revolution until the phase beyond each edge is proven monotone. The teeth are followed
+// from its edges, and its crossings kept as roots for the next node, as the walk's own are.
 double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
                       NodeCounts& counts) {
   const double rev = s_.rev, t_lo = geo.t_lo(), t_hi = geo.t_hi(), w = std::abs(s_.omega);
@@ -244,30 +245,72 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
     if (q.over) best = std::min(best, q.height);
     return q.height;
   };
-  // Every crossing in [lo, hi], exactly.
+  // A crossing found exactly, kept as a root for the next node (its move from the last node's
+  // root nearest it, if any): the walk's steps and first crossings next to an exact revolution
+  // then start from the last node's roots too.
+  zone_roots_.clear();
+  auto keep = [&](const PassageGeometry::Crossing& c, std::vector<Root>& into) {
+    const Root* match = nearest(st.roots[static_cast<std::size_t>(c.tooth)], c.t, 0.25 * rev);
+    const double drift = match ? c.t - match->t : 0.0;
+    into.push_back(
+        {c.t, drift, match ? match->slope : s_.omega, match ? drift - match->drift : 0.0});
+  };
+  // Tooth 0's probes at the ends of the last exact solve, and where: the walks from the zone's
+  // edges start there.
+  Probe end_probe[2];
+  double end_at[2] = {NAN, NAN};
+  // Every crossing in [lo, hi], exactly (kept: the zone's for every tooth, else `tooth`'s).
   auto exact = [&](int tooth, double lo, double hi) {
     ++counts.exact_windows, exact_used_ = true;
     double limit = std::min(best, best_node);
     roots_.clear();
-    geo.crossings_in(tooth, std::max(lo, t_lo), std::min(hi, t_hi), limit, roots_);
-    for (const auto& r : roots_) take(r.tooth, r.t, &r.q);
+    end_at[0] = std::max(lo, t_lo), end_at[1] = std::min(hi, t_hi);
+    geo.crossings_in(tooth, end_at[0], end_at[1], limit, roots_, end_probe);
+    for (const auto& r : roots_) {
+      take(r.tooth, r.t, &r.q);
+      if (tooth < 0)
+        zone_roots_.push_back(r);
+      else
+        keep(r, fresh_);
+    }
   };
   // The zone around t_b solved for all teeth: [zone[0], zone[1]], empty when the phase is proven
   // monotone around t_b (then each tooth's first crossing is followed from the last node's).
   double zone[2] = {t_b, t_b};
+  // The span over 1.1 revolutions beyond each edge, where proven monotone there: the first step
+  // of every tooth's walk from that edge needs no other.
+  PassageGeometry::Span beyond_edge[2]{};
+  // Tooth 0's probe at each edge (the exact solve's), and where it was taken.
+  Probe edge_probe[2];
+  double edge_probe_at[2] = {NAN, NAN};
+  bool edge_proven[2] = {false, false};
+  auto prove_edge = [&](int side) {
+    const double edge = zone[side], far = edge + (side ? 1.1 : -1.1) * rev;
+    beyond_edge[side] = geo.span(std::min(edge, far), std::max(edge, far));
+    return edge_proven[side] = beyond_edge[side].monotone(w);
+  };
   if (!geo.monotone_around(t_b, 0.8 * rev) && !geo.monotone(t_b - 0.8 * rev, t_b + 0.8 * rev)) {
-    zone[0] = t_b - 0.5 * rev, zone[1] = t_b + 0.5 * rev;
+    // Each edge as near t_b as the phase is proven monotone beyond it, by eighths of a
+    // revolution (the axis's closest approach holds the turn-backs, so a whole revolution solved
+    // exactly was mostly pieces far from it); from half a revolution out, by whole ones (below).
+    for (int side = 0; side < 2; ++side) {
+      const double dir = side ? 1.0 : -1.0;
+      for (int k = 1; k <= 4; ++k)
+        if (zone[side] = t_b + dir * k * rev / 8; k == 4 || prove_edge(side)) break;
+    }
     exact(-1, zone[0], zone[1]);
+    for (int side = 0; side < 2; ++side)
+      edge_probe[side] = end_probe[side], edge_probe_at[side] = end_at[side];
     for (int side = 0; side < 2; ++side) {
       const double dir = side ? 1.0 : -1.0;
       double& edge = zone[side];
       // (On a steep face this can walk a whole pass, revolution by revolution, for one node:
       // a stop request is checked at each.)
-      while ((dir > 0 ? edge < t_hi + rev / 2 : edge > t_lo - rev / 2) && !s_.stopped() &&
-             geo.envelope(edge) < std::min(best, best_node) &&
-             !geo.monotone(edge, edge + dir * 1.1 * rev)) {
+      while (!edge_proven[side] && (dir > 0 ? edge < t_hi + rev / 2 : edge > t_lo - rev / 2) &&
+             !s_.stopped() && geo.envelope(edge) < std::min(best, best_node) && !prove_edge(side)) {
         exact(-1, std::min(edge, edge + dir * rev), std::max(edge, edge + dir * rev));
         edge += dir * rev;
+        edge_probe[side] = end_probe[side], edge_probe_at[side] = end_at[side];
       }
     }
   }
@@ -275,13 +318,20 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
   for (int tooth = 0; tooth < s_.teeth; ++tooth) {
     std::vector<Root>& prev = st.roots[static_cast<std::size_t>(tooth)];
     fresh_.clear();
+    for (const auto& r : zone_roots_)
+      if (r.tooth == tooth) keep(r, fresh_);
     // The crossing near `guess`, started from the previous node's root predicted nearest to it
     // (within `reach`); NaN when it did not converge.
-    auto solve = [&](double guess, double reach, Probe& q) {
-      const Root* match = nullptr;
-      for (const Root& r : prev)
-        if (std::abs(r.t + r.drift - guess) < reach)
-          reach = std::abs(r.t + r.drift - guess), match = &r;
+    // `matched` gets the root started from (null if none). `hint`, where given, is started from
+    // instead of the one nearest `guess`.
+    auto solve = [&](double guess, double reach, Probe& q, const Root*& matched,
+                     const Root* hint = nullptr) {
+      const Root* match = hint;
+      if (!match)
+        for (const Root& r : prev)
+          if (std::abs(r.t + r.drift - guess) < reach)
+            reach = std::abs(r.t + r.drift - guess), match = &r;
+      matched = match;
       double slope = match ? match->slope : s_.omega;
       // Started where the root's last two moves say it goes on to (on smooth passes the guess
       // is then often within the tolerance and one probe settles it: 7 % of the instructions at
@@ -299,8 +349,9 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
     // off elsewhere: then, as where it is not monotone, the revolution around t_b exactly).
     Probe first{};
     double t_first = NAN;
+    const Root* first_match = nullptr;
     if (!zoned) {
-      t_first = solve(t_b, 0.75 * rev, first);
+      t_first = solve(t_b, 0.75 * rev, first, first_match);
       if (std::isnan(t_first) || std::abs(t_first - t_b) > 0.75 * rev) {
         t_first = NAN;
         exact(tooth, t_b - 0.5 * rev, t_b + 0.5 * rev);
@@ -316,6 +367,7 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
       double rho_prev = first.rho;    // the root's distance from the axis, when at one
       Probe q_prev = first;           // the tooth's probe at t_prev (when at a root, or once asked)
       double rate_prev = first_rate;  // the phase's rate at t_prev, when at a root
+      const Root* from = first_root ? first_match : nullptr;  // the last node's root at t_prev
       RiseCount rise;
       if (first_root) rise.add(first_height);
       for (int m = 1; m < 100000 && !rise.done(); ++m) {
@@ -346,7 +398,10 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
         const bool easy = at_root && geo.monotone_from(rho_prev, 1.1 * rev);
         PassageGeometry::Span ahead{};
         if (!easy) {
-          ahead = geo.span(std::min(t_prev, far), std::max(t_prev, far));
+          const int side = dir > 0;
+          ahead = !at_root && zoned && t_prev == zone[side] && edge_proven[side]
+                      ? beyond_edge[side]
+                      : geo.span(std::min(t_prev, far), std::max(t_prev, far));
           if (!ahead.monotone(w)) {
             solve_revolution();
             continue;
@@ -362,14 +417,30 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
           if (r > 0.5 * w && r < 2 * w) guess = t_prev + dir * kTwoPi / r;
         } else {
           // From an edge: the next crossing is where the phase has turned on to its next zero.
-          q_prev = geo.probe(tooth, t_prev);
+          const int side = dir > 0;
+          q_prev = t_prev == edge_probe_at[side] ? geo.turned_to(edge_probe[side], tooth)
+                                                 : geo.probe(tooth, t_prev);
           const double g = q_prev.g;
           gap = dir * s_.omega > 0 ? -g : g;
           gap -= kTwoPi * std::floor(gap / kTwoPi);  // the turn still to go, in [0, 2 pi)
+          // That turn takes at least gap / top (the span just proven monotone bounds the rate):
+          // where the envelope is already too high there, no crossing beyond the edge can lower
+          // the node.
+          if (ends_at(t_prev + dir * gap / ahead.top(w))) break;
           guess = t_prev + dir * gap / w;
         }
+        // From a root that was the last node's too, the next is where the last node's next was
+        // (where the rate at the root would put it, the phase may speed up across the axis's
+        // closest approach and the guess skip a crossing: a revolution then solved exactly).
+        const Root* hint = nullptr;
+        if (at_root && from) {
+          const std::ptrdiff_t next = (from - prev.data()) + dir;  // (prev is sorted by time)
+          if (next >= 0 && next < static_cast<std::ptrdiff_t>(prev.size()) &&
+              dir * (prev[next].t + prev[next].drift - t_prev) > 0.25 * rev)
+            hint = &prev[next];
+        }
         Probe q{};
-        const double t = solve(guess, 0.25 * rev, q);
+        const double t = solve(guess, 0.25 * rev, q, from, hint);
         // After a crossing, t must be the next; after an edge, the first beyond it (a crossing
         // before it was found by the exact solve already: the walk goes on from there). The
         // phase turns by `need` plus whole turns from t_prev to t (both ends say so): t is the

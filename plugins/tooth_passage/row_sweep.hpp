@@ -106,7 +106,8 @@ class RowSweep {
   bool win_fallback_ = false, walk_fallback_ = false;
   Root fallback_root_{}, win_fallback_root_{};
   std::vector<PassageGeometry::Crossing> roots_;
-  bool exact_used_ = false, fallback_used_ = false;  // the route of the node in hand
+  std::vector<PassageGeometry::Crossing> zone_roots_;  // walk: the zone's exact crossings
+  bool exact_used_ = false, fallback_used_ = false;    // the route of the node in hand
 };
 
 }  // namespace topomill::plugins
