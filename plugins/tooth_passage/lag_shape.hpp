@@ -55,6 +55,9 @@ class LagShape {
       k1_[static_cast<std::size_t>(b)] = 1.1 * m1;
       k2_[static_cast<std::size_t>(b)] = 1.1 * m2;
     }
+    // From the axis out: the largest slope up to each bin (slope_to).
+    k1_to_.resize(kBins);
+    for (std::size_t b = 0; b < kBins; ++b) k1_to_[b] = std::max(k1_[b], b ? k1_to_[b - 1] : 0.0);
     // Range maxima by a sparse table: level L holds the maximum over 2^L bins from each bin,
     // so any range is the maximum of two overlapping entries (span() asks this for every piece).
     for (int L = 1; L < kLevels; ++L) {
@@ -81,6 +84,9 @@ class LagShape {
     const double v = turned_[std::max(b0, b1)] - turned_[std::min(b0, b1)];
     return std::isnan(v) ? INFINITY : v;
   }
+
+  // The largest |dPsi / d ln rho| from the axis out to rho (over(0, rho)'s k1, by one lookup).
+  double slope_to(double rho) const { return rho >= R_ ? INFINITY : k1_to_[bin(rho)]; }
 
   Bound over(double lo, double hi) const {
     const std::size_t b0 = bin(lo), b1 = bin(hi);
@@ -126,6 +132,7 @@ class LagShape {
 
   double R_, tip_;
   std::vector<double> k1_, k2_;  // the sparse table, level 0 (the bins) first
+  std::vector<double> k1_to_;    // k1_to_[b]: the largest k1 over bins 0 to b
   std::vector<double> turned_;   // turned_[b]: the lag's variation summed over bins below b
 };
 

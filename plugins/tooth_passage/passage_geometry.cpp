@@ -528,8 +528,14 @@ bool PassageGeometry::turns_by(double lo, double hi, double turn) const {
   return std::abs(std::abs(sum) - turn) < 1e-6;
 }
 
+bool PassageGeometry::clears_line(double out) const {
+  if (tilted_ || turning_) return false;
+  const double k1 = s_.lag_shape.slope_to(out);
+  return line_gap_ >= 1.01 * std::sqrt(1 + k1 * k1) * s_.plan_line[win_].speed / std::abs(s_.omega);
+}
+
 bool PassageGeometry::monotone_around(double t, double duration) const {
-  if (!far_from_line()) return false;  // (before reading the table: near the line it never holds)
+  if (tilted_ || turning_) return false;  // (before reading the table: it never holds then)
   const Vec3 c = table_(t);
   return monotone_from(norm(x_ - c.x(), y_ - c.y()), duration);
 }
@@ -563,7 +569,7 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
     // The node far enough from the line with the lag's slope over the whole ball (gap_lag, at
     // least the one below): most nodes, settled without the table.
     if (far_from_line()) return half;
-    const double k1 = s_.lag_shape.over(0.0, rho + v * half).k1;
+    const double k1 = s_.lag_shape.slope_to(rho + v * half);
     const double clear = 1.01 * std::sqrt(1 + k1 * k1) * v / w;
     if (std::max(rho - 1.01 * v * half, line_gap_) >= clear) return half;
   }

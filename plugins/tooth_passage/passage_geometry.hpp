@@ -453,9 +453,14 @@ class PassageGeometry {
   // out), and no span need be asked: most nodes of every scene, all but those within about
   // v / omega of a pass's line.
   bool monotone_from(double rho, double duration) const {
-    const double v = s_.plan_line[win_].speed;
-    return far_from_line() && rho + v * duration <= 0.95 * s_.R;
+    const double v = s_.plan_line[win_].speed, out = rho + v * duration;
+    if (out > 0.95 * s_.R) return false;
+    return far_from_line() || clears_line(out);
   }
+  // Nearer the line: the same with the lag's slope only as far out as the node gets, `out` from
+  // the axis (gap_lag takes it to 0.95 R, where a loxodrome's is twice its tip's), as next_gap
+  // does.
+  bool clears_line(double out) const;
   // The same within `duration` either side of t.
   bool monotone_around(double t, double duration) const;
   // Whether the phase is certainly monotone on [a, b] by the crude bound alone.

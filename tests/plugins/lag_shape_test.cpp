@@ -78,6 +78,14 @@ TEST_CASE("lag shape: the slope bound over any range of distances holds the lag'
       sampled(std::max(lo - 2 * R / 4096, 1e-4), std::min(hi + 2 * R / 4096, 0.99 * R), wide,
               unused);
       CHECK(bound.k1 <= 1.2 * wide + 1e-9);
+      // From the axis out to hi (slope_to, what monotone_from and next_gap ask): the same
+      // bound, sampled from a micrometre out (below, both edges' slopes are constant or held).
+      double from_axis = 0;
+      sampled(1e-3, hi, from_axis, unused);
+      INFO("from the axis to " << hi << " mm: sampled " << from_axis << ", slope_to "
+                               << shape.slope_to(hi));
+      CHECK(shape.slope_to(hi) >= from_axis * (1 - 1e-6));
+      CHECK(shape.slope_to(hi) <= 1.2 * std::max(from_axis, wide) + 1e-9);
     }
   }
 }
