@@ -79,7 +79,8 @@ TEST_CASE("lag shape: the slope bound over any range of distances holds the lag'
               unused);
       CHECK(bound.k1 <= 1.2 * wide + 1e-9);
       // From the axis out to hi (slope_to, what monotone_from and next_gap ask): the same
-      // bound, sampled from a micrometre out (below, both edges' slopes are constant or held).
+      // bound, sampled from a micrometre out (below it the three edges' slopes are held, constant
+      // or vanishing).
       double from_axis = 0;
       sampled(1e-3, hi, from_axis, unused);
       INFO("from the axis to " << hi << " mm: sampled " << from_axis << ", slope_to "
