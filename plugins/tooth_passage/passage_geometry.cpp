@@ -528,10 +528,13 @@ bool PassageGeometry::turns_by(double lo, double hi, double turn) const {
   return std::abs(std::abs(sum) - turn) < 1e-6;
 }
 
-bool PassageGeometry::clears_line(double out) const {
-  if (tilted_ || turning_) return false;
+double PassageGeometry::clearance(double out) const {
   const double k1 = s_.lag_shape.slope_to(out);
-  return line_gap_ >= 1.01 * std::sqrt(1 + k1 * k1) * s_.plan_line[win_].speed / std::abs(s_.omega);
+  return 1.01 * std::sqrt(1 + k1 * k1) * s_.plan_line[win_].speed / std::abs(s_.omega);
+}
+
+bool PassageGeometry::clears_line(double out) const {
+  return !tilted_ && !turning_ && line_gap_ >= clearance(out);
 }
 
 bool PassageGeometry::monotone_around(double t, double duration) const {
@@ -569,9 +572,7 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
     // The node far enough from the line with the lag's slope over the whole ball (gap_lag, at
     // least the one below): most nodes, settled without the table.
     if (far_from_line()) return half;
-    const double k1 = s_.lag_shape.slope_to(rho + v * half);
-    const double clear = 1.01 * std::sqrt(1 + k1 * k1) * v / w;
-    if (std::max(rho - 1.01 * v * half, line_gap_) >= clear) return half;
+    if (std::max(rho - 1.01 * v * half, line_gap_) >= clearance(rho + v * half)) return half;
   }
   const Span sp = span(std::min(t, t + dir * half), std::max(t, t + dir * half));
   return sp.monotone(w) ? std::min(half, kTwoPi / sp.top(w)) : 0.0;

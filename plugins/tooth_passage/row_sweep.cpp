@@ -255,17 +255,19 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
     into.push_back(
         {c.t, drift, match ? match->slope : s_.omega, match ? drift - match->drift : 0.0});
   };
-  // Tooth 0's probes at the ends of the last exact solve, and where: the walks from the zone's
-  // edges start there.
-  Probe end_probe[2];
-  double end_at[2] = {NAN, NAN};
+  // Tooth 0's probes at the ends of the zone's last exact solve, and where: the walks from the
+  // zone's edges start there (after the zone grew on one side, the other's no longer matches its
+  // edge, and is probed again).
+  Probe edge_probe[2];
+  double edge_probe_at[2] = {NAN, NAN};
   // Every crossing in [lo, hi], exactly (kept: the zone's for every tooth, else `tooth`'s).
   auto exact = [&](int tooth, double lo, double hi) {
     ++counts.exact_windows, exact_used_ = true;
     double limit = std::min(best, best_node);
     roots_.clear();
-    end_at[0] = std::max(lo, t_lo), end_at[1] = std::min(hi, t_hi);
-    geo.crossings_in(tooth, end_at[0], end_at[1], limit, roots_, end_probe);
+    const double a = std::max(lo, t_lo), b = std::min(hi, t_hi);
+    if (tooth < 0) edge_probe_at[0] = a, edge_probe_at[1] = b;
+    geo.crossings_in(tooth, a, b, limit, roots_, tooth < 0 ? edge_probe : nullptr);
     for (const auto& r : roots_) {
       take(r.tooth, r.t, &r.q);
       if (tooth < 0)
@@ -280,9 +282,6 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
   // The span over 1.1 revolutions beyond each edge, where proven monotone there: the first step
   // of every tooth's walk from that edge needs no other.
   PassageGeometry::Span beyond_edge[2]{};
-  // Tooth 0's probe at each edge (the exact solve's), and where it was taken.
-  Probe edge_probe[2];
-  double edge_probe_at[2] = {NAN, NAN};
   bool edge_proven[2] = {false, false};
   auto prove_edge = [&](int side) {
     const double edge = zone[side], far = edge + (side ? 1.1 : -1.1) * rev;
@@ -299,8 +298,6 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
         if (zone[side] = t_b + dir * k * rev / 8; k == 4 || prove_edge(side)) break;
     }
     exact(-1, zone[0], zone[1]);
-    for (int side = 0; side < 2; ++side)
-      edge_probe[side] = end_probe[side], edge_probe_at[side] = end_at[side];
     for (int side = 0; side < 2; ++side) {
       const double dir = side ? 1.0 : -1.0;
       double& edge = zone[side];
@@ -310,7 +307,6 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
              !s_.stopped() && geo.envelope(edge) < std::min(best, best_node) && !prove_edge(side)) {
         exact(-1, std::min(edge, edge + dir * rev), std::max(edge, edge + dir * rev));
         edge += dir * rev;
-        edge_probe[side] = end_probe[side], edge_probe_at[side] = end_at[side];
       }
     }
   }
