@@ -143,6 +143,8 @@ class CentreTable {
   // derivatives at their ends (where a cubic's, linear, is largest), with a margin. The
   // correction adds none within its linear pieces.
   double accel_xy() const { return accel_xy_; }
+  // The same in space (mm/s^2): how far the centre strays from its tangent line (land()).
+  double accel() const { return accel_; }
 
   // A lower bound of the centre's height over a short span [ta, tb]: the nominal part's lower
   // end less twice its bend (which the midpoint measures: for a parabola the chord lies
@@ -276,11 +278,13 @@ class CentreTable {
       const Vec3 &m = knots_[i - 1], &a = knots_[i], &b = knots_[i + 1], &c = knots_[i + 2];
       cubic_[i] = {a, -m / 3 - a / 2 + b - c / 6, m / 2 - a + b / 2, (c - m) / 6 + (a - b) / 2};
     }
-    accel_xy_ = 0;
+    accel_xy_ = accel_ = 0;
     for (std::size_t i = 1; i + 2 < n; ++i)
-      for (const Vec3& d2 : {Vec3(2 * cubic_[i][2]), Vec3(2 * cubic_[i][2] + 6 * cubic_[i][3])})
+      for (const Vec3& d2 : {Vec3(2 * cubic_[i][2]), Vec3(2 * cubic_[i][2] + 6 * cubic_[i][3])}) {
         accel_xy_ = std::max(accel_xy_, std::hypot(d2.x(), d2.y()) * inv_dt_ * inv_dt_);
-    accel_xy_ = 1.25 * accel_xy_ + 1e-9;
+        accel_ = std::max(accel_, d2.norm() * inv_dt_ * inv_dt_);
+      }
+    accel_xy_ = 1.25 * accel_xy_ + 1e-9, accel_ = 1.25 * accel_ + 1e-9;
   }
   double max_midpoint_error() const {
     double worst = 0;
@@ -309,7 +313,7 @@ class CentreTable {
   const ToolPath::Correction* correction_;
   bool spindle_axis_;
   Stretch stretch_;
-  double t0_ = 0, inv_dt_ = 1, accel_xy_ = 0;
+  double t0_ = 0, inv_dt_ = 1, accel_xy_ = 0, accel_ = 0;
   std::vector<Vec3> knots_;
   using Cubic = std::array<Vec3, 4>;  // coefficients of s^0 .. s^3
   std::vector<Cubic> cubic_;

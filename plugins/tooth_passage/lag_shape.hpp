@@ -55,9 +55,11 @@ class LagShape {
       k1_[static_cast<std::size_t>(b)] = 1.1 * m1;
       k2_[static_cast<std::size_t>(b)] = 1.1 * m2;
     }
-    // From the axis out: the largest slope up to each bin (slope_to).
-    k1_to_.resize(kBins);
-    for (std::size_t b = 0; b < kBins; ++b) k1_to_[b] = std::max(k1_[b], b ? k1_to_[b - 1] : 0.0);
+    // From the axis out: the largest slope and bend up to each bin (slope_to, up_to).
+    k1_to_.resize(kBins), k2_to_.resize(kBins);
+    for (std::size_t b = 0; b < kBins; ++b)
+      k1_to_[b] = std::max(k1_[b], b ? k1_to_[b - 1] : 0.0),
+      k2_to_[b] = std::max(k2_[b], b ? k2_to_[b - 1] : 0.0);
     // Range maxima by a sparse table: level L holds the maximum over 2^L bins from each bin,
     // so any range is the maximum of two overlapping entries (span() asks this for every piece).
     for (int L = 1; L < kLevels; ++L) {
@@ -87,6 +89,13 @@ class LagShape {
 
   // The largest |dPsi / d ln rho| from the axis out to rho (over(0, rho)'s k1, by one lookup).
   double slope_to(double rho) const { return rho >= R_ ? INFINITY : k1_to_[bin(rho)]; }
+  // over(0, rho)'s k1 and k2 by one lookup each, without the tip's kink (the caller asks that
+  // itself where it needs to: PassageGeometry::land).
+  Bound up_to(double rho) const {
+    if (rho >= R_) return {INFINITY, INFINITY, false};
+    const std::size_t b = bin(rho);
+    return {k1_to_[b], k2_to_[b], false};
+  }
 
   Bound over(double lo, double hi) const {
     const std::size_t b0 = bin(lo), b1 = bin(hi);
@@ -131,9 +140,9 @@ class LagShape {
   }
 
   double R_, tip_;
-  std::vector<double> k1_, k2_;  // the sparse table, level 0 (the bins) first
-  std::vector<double> k1_to_;    // k1_to_[b]: the largest k1 over bins 0 to b
-  std::vector<double> turned_;   // turned_[b]: the lag's variation summed over bins below b
+  std::vector<double> k1_, k2_;        // the sparse table, level 0 (the bins) first
+  std::vector<double> k1_to_, k2_to_;  // k1_to_[b]: the largest k1 over bins 0 to b; k2 likewise
+  std::vector<double> turned_;         // turned_[b]: the lag's variation summed over bins below b
 };
 
 }  // namespace topomill::plugins

@@ -279,8 +279,10 @@ double PassageGeometry::crossing(int tooth, double t, double& slope, Probe& last
     // Newton's step on the phase's own rate; the secant where that is too flat to step by (or
     // undefined: on the axis). Near the axis, where the rate swings by v / rho within a passage,
     // this takes a quarter fewer probes than the secant alone did.
-    if (const double r = rate(at, at.dv); std::abs(r) > 0.1 * std::abs(s_.omega)) {
+    double lag_rate = 0;
+    if (const double r = rate(at, at.dv, &lag_rate); std::abs(r) > 0.1 * std::abs(s_.omega)) {
       slope = r;
+      if (land(at, last, r, lag_rate, t, last)) break;
     } else if (k > 0 && t != t_prev && std::abs(gk - g_prev) < M_PI) {
       const double sec = (gk - g_prev) / (t - t_prev);
       if (std::abs(sec) > 0.1 * std::abs(s_.omega)) slope = sec;
@@ -578,7 +580,38 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
   return sp.monotone(w) ? std::min(half, kTwoPi / sp.top(w)) : 0.0;
 }
 
-double PassageGeometry::rate(const Sample& at, const Vec3& dv) const {
+bool PassageGeometry::land(const Sample& at, const Probe& q, double r, double lag_rate, double& t,
+                           Probe& out) const {
+  if (tilted_ || turning_) return false;
+  const double dt = -q.g / r, t1 = at.t + dt, h = std::abs(dt);
+  // The correction is linear between knots: with one inside, G' may jump (no bound of G'').
+  const double step = s_.path->correction_step(src_);
+  if (step > 0 && std::floor(at.t / step) != std::floor(t1 / step) &&
+      std::min(at.t, t1) <= last_knot())
+    return false;
+  // Over the step the centre moves at most at `speed`, so rho stays within [rho_lo, rho_hi].
+  const double A = table_.accel_xy(), centre_accel = table_.accel();
+  const Vec3 v = at.v + at.dv;
+  const double speed = std::sqrt(v.x() * v.x() + v.y() * v.y()) + A * h;
+  const double rho_lo = q.rho - speed * h, rho_hi = q.rho + speed * h, tip = s_.sin_tip * s_.R;
+  if (!(rho_lo > 0) || (rho_lo <= tip && tip <= rho_hi)) return false;
+  // The lag's slope and bend from the axis out to rho_hi: looser than over the step's range,
+  // but one lookup, and the bound is met with orders to spare (1e-13 rad where it is asked).
+  const LagShape::Bound k = s_.lag_shape.up_to(rho_hi);
+  if (!std::isfinite(k.k1) || 0.5 * phase_curvature(k.k1, k.k2, speed, A, rho_lo) * h * h > 1e-10 ||
+      0.5 * centre_accel * h * h > 1e-13)
+    return false;
+  const Vec3 c = at.c + v * dt;
+  const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
+  if (!(r2 < s_.R2)) return false;
+  const double rho = std::sqrt(r2);
+  t = t1;
+  out = {rho >= rho_lo_ && rho <= rho_hi_, 0.0, c.z() - std::sqrt(s_.R2 - r2), rho,
+         q.lag + lag_rate * dt};
+  return true;
+}
+
+double PassageGeometry::rate(const Sample& at, const Vec3& dv, double* lag_rate) const {
   if (tilted_) {
     // The same in the tool frame: q the ball point's offset from the axis, q' its velocity.
     Vec3 p, dp;
@@ -598,7 +631,9 @@ double PassageGeometry::rate(const Sample& at, const Vec3& dv) const {
   const double du = -(qx * v.x() + qy * v.y()) / r2, daz = -(qx * v.y() - qy * v.x()) / r2;
   const double sin_a = std::sqrt(r2) / s_.R;
   if (sin_a >= 1) return NAN;
-  return s_.omega + s_.lag_shape.slope(sin_a, std::sqrt(1 - sin_a * sin_a), *s_.tool) * du - daz;
+  const double lag = s_.lag_shape.slope(sin_a, std::sqrt(1 - sin_a * sin_a), *s_.tool) * du;
+  if (lag_rate) *lag_rate = lag;
+  return s_.omega + lag - daz;
 }
 
 double PassageGeometry::split_time(double lo, double hi) const {

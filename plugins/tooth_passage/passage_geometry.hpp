@@ -335,7 +335,8 @@ class PassageGeometry {
   // where that is too flat or undefined (on the axis) the last secant, or `slope` (the spindle
   // rate when nothing better is known). Returns the time; `slope` gets the last step's slope and
   // `last` the last probe, which is at the returned time when it converged (|last.g| < 1e-9 rad:
-  // the time to 1e-9 / omega, about 2e-12 s, the height to about 1e-11 mm).
+  // the time to 1e-9 / omega, about 2e-12 s, the height to about 1e-11 mm; or the last step
+  // proven to land within 1e-10 rad, land()).
   double crossing(int tooth, double t, double& slope, Probe& last) const;
   double crossing(int tooth, double t) const {
     double slope = s_.omega;
@@ -343,6 +344,18 @@ class PassageGeometry {
     return crossing(tooth, t, slope, last);
   }
   static bool converged(const Probe& q) { return std::abs(q.g) < 1e-9; }
+  // Newton's step from probe q at `at` (the phase's rate there r, the lag's part of it lag_rate)
+  // without a probe to check it, where it is proven to land: |G| <= C h^2 / 2 after a step of
+  // length h, C the bound of |G''| (phase_curvature.hpp) over the step, and that must be at most
+  // 1e-10 rad, a tenth of converged()'s tolerance. Then `t` gets the step's end and `out` its
+  // probe: the phase 0, the ball's height and rho exact from the centre's tangent line (within
+  // accel h^2 / 2 <= 1e-13 mm of the centre), the lag from its rate (within C h^2 / 2 too: C
+  // bounds the lag's own second derivative; advance() reads it to 1e-6). False where that is not
+  // proven (a knot or the tip radius within the step, a tilted tool, too long a step): a probe
+  // must check the step. Near the axis a guess from the last node is 1e-7 to 1e-6 rad off,
+  // and this took the second probe, with its atan2 and lag, off most crossings there.
+  bool land(const Sample& at, const Probe& q, double r, double lag_rate, double& t,
+            Probe& out) const;
 
   // The bottom of `f` (envelope or floor_envelope) within [a, b] (golden section to a 20th of
   // a tooth period). Where the bracket still holds an end of [a, b] and f is lower there, that
@@ -443,7 +456,8 @@ class PassageGeometry {
   }
   // G'(t), the phase's rate (rad/s): the same for every tooth. `dv` is the correction's slope on
   // the side of t asked for (sample's is the right: a piece ending at a knot asks for the left).
-  double rate(const Sample& at, const Vec3& dv) const;
+  // `lag_rate`, where given, gets the lag's part of it (vertical tool only).
+  double rate(const Sample& at, const Vec3& dv, double* lag_rate = nullptr) const;
   // Whether the phase is monotone, G' within (0, 2 omega), over `duration` from (or to) a time when
   // the node is `rho` from the axis, for a reason that holds all along the window: a vertical
   // tool, the node farther from the window's line than S v / omega (PlanLine; S from the lag's

@@ -337,8 +337,12 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
       const double t =
           geo.crossing(tooth, match ? match->t + match->drift + match->bend : guess, slope, q);
       if (!PassageGeometry::converged(q)) return double(NAN);
-      const double drift = match ? t - match->t : 0.0;
-      fresh_.push_back({t, drift, slope, match ? drift - match->drift : 0.0});
+      // The root kept for the next node is one more Newton step on (no probe): the probed time
+      // is up to 1e-9 rad off, which the extrapolation above amplifies, so that on smooth passes
+      // the next node's guess often missed the tolerance by that alone (lambda 30: 15 % of the
+      // instructions). The height stays the probe's.
+      const double root = t - q.g / slope, drift = match ? root - match->t : 0.0;
+      fresh_.push_back({root, drift, slope, match ? drift - match->drift : 0.0});
       return t;
     };
     // The first crossing: near t_b where the phase is monotone around it (the secant can run

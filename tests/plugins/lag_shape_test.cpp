@@ -87,6 +87,20 @@ TEST_CASE("lag shape: the slope bound over any range of distances holds the lag'
                                << shape.slope_to(hi));
       CHECK(shape.slope_to(hi) >= from_axis * (1 - 1e-6));
       CHECK(shape.slope_to(hi) <= 1.2 * std::max(from_axis, wide) + 1e-9);
+      // up_to (what land() asks): the same slope, and the bend d^2 Psi / d (ln rho)^2 out to hi,
+      // sampled by second differences on the same steps (where the lag is not held).
+      double bend = 0;
+      for (int i = 0; i <= 400; ++i) {
+        const double rho = std::exp(std::log(1e-3) + (std::log(hi) - std::log(1e-3)) * i / 400);
+        const double e = 1e-4;
+        if (rho * std::exp(e) < R && rho * std::exp(-e) > tip)
+          bend = std::max(
+              bend,
+              std::abs(lag(rho * std::exp(e)) - 2 * lag(rho) + lag(rho * std::exp(-e))) / (e * e));
+      }
+      INFO("bend sampled " << bend << ", up_to " << shape.up_to(hi).k2);
+      CHECK(shape.up_to(hi).k1 == shape.slope_to(hi));
+      CHECK(shape.up_to(hi).k2 >= bend * (1 - 1e-3) - 1e-6);  // (round-off in the differences)
     }
   }
 }
