@@ -75,7 +75,7 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
   parallel = path->feed_axis() != ToolPath::FeedAxis::None && window.size() == path->passes();
   // A probe may look a revolution beyond either end of a window.
   const double pad = 2 * rev;
-  const double k1 = lag_shape.over(0.0, 0.95 * R).k1;  // the lag's slope over the ball
+  const double k1 = lag_shape.slope_to(0.95 * R);  // the lag's slope over the ball
   gap_lag = std::sqrt(1 + k1 * k1);
   std::shared_ptr<const CorrectionIndex> index;  // the pass's, shared by its windows
   for (const Window& win : window) {
@@ -561,7 +561,7 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
       const double speed = L * v + turn_speed(), moved = speed * half;
       if (rho + moved <= 0.95 * s_.R) {
         if (rho - 1.01 * moved >= 1.01 * s_.gap_lag * speed / w) return half;
-        const double k1 = s_.lag_shape.over(0.0, rho + moved).k1;
+        const double k1 = s_.lag_shape.slope_to(rho + moved);
         if (rho - 1.01 * moved >= 1.01 * std::sqrt(1 + k1 * k1) * speed / w) return half;
       }
     }
@@ -593,12 +593,11 @@ bool PassageGeometry::land(const Sample& at, const Probe& q, double r, double la
   const double A = table_.accel_xy(), centre_accel = table_.accel();
   const Vec3 v = at.v + at.dv;
   const double speed = std::sqrt(v.x() * v.x() + v.y() * v.y()) + A * h;
-  const double rho_lo = q.rho - speed * h, rho_hi = q.rho + speed * h, tip = s_.sin_tip * s_.R;
-  if (!(rho_lo > 0) || (rho_lo <= tip && tip <= rho_hi)) return false;
-  // The lag's slope and bend from the axis out to rho_hi: looser than over the step's range,
-  // but one lookup, and the bound is met with orders to spare (1e-13 rad where it is asked).
-  const LagShape::Bound k = s_.lag_shape.up_to(rho_hi);
-  if (!std::isfinite(k.k1) || 0.5 * phase_curvature(k.k1, k.k2, speed, A, rho_lo) * h * h > 1e-10 ||
+  const double rho_lo = q.rho - speed * h, rho_hi = q.rho + speed * h;
+  if (!(rho_lo > 0)) return false;
+  const LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);
+  if (k.kink || !std::isfinite(k.k1) ||
+      0.5 * phase_curvature(k.k1, k.k2, speed, A, rho_lo) * h * h > 1e-10 ||
       0.5 * centre_accel * h * h > 1e-13)
     return false;
   const Vec3 c = at.c + v * dt;
