@@ -282,7 +282,7 @@ double PassageGeometry::crossing(int tooth, double t, double& slope, Probe& last
     double lag_rate = 0;
     if (const double r = rate(at, at.dv, &lag_rate); std::abs(r) > 0.1 * std::abs(s_.omega)) {
       slope = r;
-      if (land(at, last, r, lag_rate, t, last)) break;
+      if (land(at, r, lag_rate, t, last)) break;
     } else if (k > 0 && t != t_prev && std::abs(gk - g_prev) < M_PI) {
       const double sec = (gk - g_prev) / (t - t_prev);
       if (std::abs(sec) > 0.1 * std::abs(s_.omega)) slope = sec;
@@ -580,8 +580,7 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
   return sp.monotone(w) ? std::min(half, kTwoPi / sp.top(w)) : 0.0;
 }
 
-bool PassageGeometry::land(const Sample& at, const Probe& q, double r, double lag_rate, double& t,
-                           Probe& out) const {
+bool PassageGeometry::land(const Sample& at, double r, double lag_rate, double& t, Probe& q) const {
   if (tilted_ || turning_) return false;
   const double dt = -q.g / r, t1 = at.t + dt, h = std::abs(dt);
   // The correction is linear between knots: with one inside, G' may jump (no bound of G'').
@@ -605,8 +604,8 @@ bool PassageGeometry::land(const Sample& at, const Probe& q, double r, double la
   if (!(r2 < s_.R2)) return false;
   const double rho = std::sqrt(r2);
   t = t1;
-  out = {rho >= rho_lo_ && rho <= rho_hi_, 0.0, c.z() - std::sqrt(s_.R2 - r2), rho,
-         q.lag + lag_rate * dt};
+  q = {rho >= rho_lo_ && rho <= rho_hi_, 0.0, c.z() - std::sqrt(s_.R2 - r2), rho,
+       q.lag + lag_rate * dt};
   return true;
 }
 

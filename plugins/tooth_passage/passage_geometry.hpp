@@ -347,15 +347,14 @@ class PassageGeometry {
   // Newton's step from probe q at `at` (the phase's rate there r, the lag's part of it lag_rate)
   // without a probe to check it, where it is proven to land: |G| <= C h^2 / 2 after a step of
   // length h, C the bound of |G''| (phase_curvature.hpp) over the step, and that must be at most
-  // 1e-10 rad, a tenth of converged()'s tolerance. Then `t` gets the step's end and `out` its
-  // probe: the phase 0, the ball's height and rho exact from the centre's tangent line (within
-  // accel h^2 / 2 <= 1e-13 mm of the centre), the lag from its rate (within C h^2 / 2 too: C
-  // bounds the lag's own second derivative; advance() reads it to 1e-6). False where that is not
-  // proven (a knot or the tip radius within the step, a tilted tool, too long a step): a probe
-  // must check the step. Near the axis a guess from the last node is 1e-7 to 1e-6 rad off,
-  // and this took the second probe, with its atan2 and lag, off most crossings there.
-  bool land(const Sample& at, const Probe& q, double r, double lag_rate, double& t,
-            Probe& out) const;
+  // 1e-10 rad, a tenth of converged()'s tolerance. Then `t` gets the step's end and `q` its
+  // probe in place of the one at `at`: the phase 0, the ball's height and rho from the centre's
+  // tangent line (which strays at most accel h^2 / 2 <= 1e-13 mm from the centre), the lag from its
+  // rate (within C h^2 / 2: C bounds the lag's own second derivative; advance() reads it to 1e-6).
+  // False where that is not proven (a knot or the tip radius within the step, a tilted tool, too
+  // long a step): a probe must check the step. Near the axis a guess from the last node is 1e-7 to
+  // 1e-6 rad off, and this took the second probe, with its atan2 and lag, off most crossings there.
+  bool land(const Sample& at, double r, double lag_rate, double& t, Probe& q) const;
 
   // The bottom of `f` (envelope or floor_envelope) within [a, b] (golden section to a 20th of
   // a tooth period). Where the bracket still holds an end of [a, b] and f is lower there, that

@@ -68,8 +68,8 @@ Landings check_landings(const topomill::ToolGeometry& tool, const topomill::Tool
           const double r = geo.rate(at, at.dv, &lag_rate);
           if (!(std::abs(r) > 0.1 * std::abs(s.omega))) continue;
           double t = t0;
-          Probe landed{};
-          if (!geo.land(at, q, r, lag_rate, t, landed)) {
+          Probe landed = q;
+          if (!geo.land(at, r, lag_rate, t, landed)) {
             ++out.refused;
             continue;
           }
@@ -151,8 +151,8 @@ TEST_CASE("land: no step lands across a knot of a jerky correction", "[tooth_pas
     const Probe q = geo.probe(0, t0, at.c);
     double lag_rate = 0, t = t0;
     const double r = geo.rate(at, at.dv, &lag_rate);
-    Probe landed{};
-    if (!geo.land(at, q, r, lag_rate, t, landed)) {
+    Probe landed = q;
+    if (!geo.land(at, r, lag_rate, t, landed)) {
       ++refused;
       continue;
     }
