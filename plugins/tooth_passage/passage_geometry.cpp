@@ -464,9 +464,9 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
     return none;
   }
   // Next to the ball's rim in plan the lift has no bound (the ball point moves vertically).
-  const double h = plan_hi < s_.R ? std::sqrt(s_.R2 - plan_hi * plan_hi) : 0.0;
-  if (h < 1e-6 * s_.R) return none;
-  const double L = s_.R / h;
+  const Lift lift = lift_bounds(s_.R, plan_hi, v_plan, A);
+  if (lift.hz < 1e-6 * s_.R) return none;
+  const double h = lift.hz, L = lift.L;
   Vec3 pa, pb, da, db;
   if (!lifted(a, ca, knot_inside ? Vec3::Zero() : Vec3(sa.v + sa.dv), pa, da) ||
       !lifted(b, cb, knot_inside ? Vec3::Zero() : Vec3(sb.v + sa.dv), pb, db))
@@ -479,9 +479,7 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
   double thick, v, c_lo, c_hi, accel, length = INFINITY;
   if (!knot_inside) {
     // P'' bound over the piece (q'' = -c'', the centre's plan acceleration at most A).
-    accel =
-        A + (v_plan * v_plan + plan_hi * A) / h + plan_hi * plan_hi * v_plan * v_plan / (h * h * h);
-    accel += turn_accel(L * v_plan);  // a turning frame's (zero when fixed)
+    accel = lift.accel + turn_accel(L * v_plan);  // and a turning frame's (zero when fixed)
     thick = accel * h_t * h_t / 8 + 1e-12;
     // v = -P' in the tool frame (the vertical code's convention: the centre's velocity).
     v = std::max(norm(da.x(), da.y()), norm(db.x(), db.y())) + accel * h_t / 2;
@@ -581,31 +579,45 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
 }
 
 bool PassageGeometry::land(const Sample& at, double r, double lag_rate, double& t, Probe& q) const {
-  if (tilted_ || turning_) return false;
+  if (turning_) return false;
   const double dt = -q.g / r, t1 = at.t + dt, h = std::abs(dt);
   // The correction is linear between knots: with one inside, G' may jump (no bound of G'').
   const double step = s_.path->correction_step(src_);
   if (step > 0 && std::floor(at.t / step) != std::floor(t1 / step) &&
       std::min(at.t, t1) <= last_knot())
     return false;
-  // Over the step the centre moves at most at `speed`, so rho stays within [rho_lo, rho_hi].
+  // The moving point (the node's offset from the axis; tilted, the ball point over it in the
+  // tool frame) moves at most at `speed` with at most `accel` over the step, so its rho stays
+  // within [rho_lo, rho_hi].
   const double A = table_.accel_xy(), centre_accel = table_.accel();
   const Vec3 v = at.v + at.dv;
-  const double speed = std::sqrt(v.x() * v.x() + v.y() * v.y()) + A * h;
+  const double v_plan = std::sqrt(v.x() * v.x() + v.y() * v.y()) + A * h;
+  double speed = v_plan, accel = A;
+  if (tilted_) {
+    const Lift lift = lift_bounds(s_.R, norm(x_ - at.c.x(), y_ - at.c.y()) + v_plan * h, v_plan, A);
+    if (lift.hz < 1e-6 * s_.R) return false;
+    speed = lift.L * v_plan, accel = lift.accel;
+  }
   const double rho_lo = q.rho - speed * h, rho_hi = q.rho + speed * h;
   if (!(rho_lo > 0)) return false;
   const LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);
   if (k.kink || !std::isfinite(k.k1) ||
-      0.5 * phase_curvature(k.k1, k.k2, speed, A, rho_lo) * h * h > 1e-10 ||
+      0.5 * phase_curvature(k.k1, k.k2, speed, accel, rho_lo) * h * h > 1e-10 ||
       0.5 * centre_accel * h * h > 1e-13)
     return false;
   const Vec3 c = at.c + v * dt;
   const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
   if (!(r2 < s_.R2)) return false;
-  const double rho = std::sqrt(r2);
+  const double below = std::sqrt(s_.R2 - r2);
+  double rho = std::sqrt(r2);
+  bool over = rho >= rho_lo_ && rho <= rho_hi_;
+  if (tilted_) {
+    const Vec3 p = to_tool_ * Vec3(dx, dy, -below);
+    rho = std::sqrt(p.x() * p.x() + p.y() * p.y());
+    over = p.z() <= 0 && rho >= rho_lo_ && rho <= rho_hi_;
+  }
   t = t1;
-  q = {rho >= rho_lo_ && rho <= rho_hi_, 0.0, c.z() - std::sqrt(s_.R2 - r2), rho,
-       q.lag + lag_rate * dt};
+  q = {over, 0.0, c.z() - below, rho, q.lag + lag_rate * dt};
   return true;
 }
 
@@ -620,7 +632,9 @@ double PassageGeometry::rate(const Sample& at, const Vec3& dv, double* lag_rate)
                  daz = (p.x() * dp.y() - p.y() * dp.x()) / r2;
     const double sin_a = std::sqrt(r2) / s_.R;
     if (sin_a >= 1) return NAN;
-    return s_.omega + s_.lag_shape.slope(sin_a, std::abs(p.z()) / s_.R, *s_.tool) * du - daz;
+    const double lag = s_.lag_shape.slope(sin_a, std::abs(p.z()) / s_.R, *s_.tool) * du;
+    if (lag_rate) *lag_rate = lag;
+    return s_.omega + lag - daz;
   }
   const Vec3 &c = at.c, v = at.v + dv;
   const double qx = x_ - c.x(), qy = y_ - c.y(), r2 = qx * qx + qy * qy;

@@ -351,9 +351,10 @@ class PassageGeometry {
   // probe in place of the one at `at`: the phase 0, the ball's height and rho from the centre's
   // tangent line (which strays at most accel h^2 / 2 <= 1e-13 mm from the centre), the lag from its
   // rate (within C h^2 / 2: C bounds the lag's own second derivative; advance() reads it to 1e-6).
-  // False where that is not proven (a knot or the tip radius within the step, a tilted tool, too
-  // long a step): a probe must check the step. Near the axis a guess from the last node is 1e-7 to
-  // 1e-6 rad off, and this took the second probe, with its atan2 and lag, off most crossings there.
+  // False where that is not proven (a knot or the tip radius within the step, a turning frame,
+  // too long a step): a probe must check the step. Near the axis a guess from the last node is 1e-7
+  // to 1e-6 rad off, and this took the second probe, with its atan2 and lag, off most crossings
+  // there.
   bool land(const Sample& at, double r, double lag_rate, double& t, Probe& q) const;
 
   // The bottom of `f` (envelope or floor_envelope) within [a, b] (golden section to a 20th of
@@ -439,6 +440,18 @@ class PassageGeometry {
                    bool knot_inside, double length = INFINITY) const;
   // A tilted tool's: the ball point over the node in the tool frame, lifted from the plan.
   Span span_tilted(const Sample& a, const Sample& b, const Vec3* na, const Vec3* nb) const;
+  // The lift P(q) = (q, -sqrt(R^2 - |q|^2)) of a plan offset q that stays within `plan` of the
+  // centre and moves at most at v with acceleration at most A: |P'| <= L v with L = R / hz,
+  // hz = sqrt(R^2 - plan^2) (|P'|^2 = |q'|^2 + (q . q')^2 / (R^2 - |q|^2)), and |P''| <= accel
+  // (the same differentiated once more); a fixed rotation into the tool frame keeps both. hz is
+  // 0 off the ball, and the bounds then meaningless. tests/plugins/land_test.cpp samples them.
+  struct Lift {
+    double hz, L, accel;
+  };
+  static Lift lift_bounds(double R, double plan, double v, double A) {
+    const double hz = plan < R ? std::sqrt(R * R - plan * plan) : 0.0;
+    return {hz, R / hz, A + (v * v + plan * A) / hz + plan * plan * v * v / (hz * hz * hz)};
+  }
   // The ball point over the node relative to the centre in the tool frame, and its velocity, for
   // the centre at c moving at v (plan offset q = node - c) at time t (the frame's, which may
   // turn): false off the ball.
@@ -455,7 +468,7 @@ class PassageGeometry {
   }
   // G'(t), the phase's rate (rad/s): the same for every tooth. `dv` is the correction's slope on
   // the side of t asked for (sample's is the right: a piece ending at a knot asks for the left).
-  // `lag_rate`, where given, gets the lag's part of it (vertical tool only).
+  // `lag_rate`, where given, gets the lag's part of it.
   double rate(const Sample& at, const Vec3& dv, double* lag_rate = nullptr) const;
   // Whether the phase is monotone, G' within (0, 2 omega), over `duration` from (or to) a time when
   // the node is `rho` from the axis, for a reason that holds all along the window: a vertical

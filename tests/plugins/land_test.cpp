@@ -2,10 +2,10 @@
 // lands, a probe there must say so too. Roots are found here by sampling the phase and bisecting
 // it with probes (no Newton), then land() is started at offsets from 1e-12 to 1e-4 s off them,
 // at nodes across the pass's line near the tool's axis (lambda 0), on the paper's convex arc
-// (the centre accelerates) and on a straight pass with a jerky correction (knots every 50 us,
-// where G' jumps and no step across may land). Every landing is checked against a full probe
-// at its time: the phase and the lag within the 1e-10 rad it claims, the height and rho to
-// round-off.
+// (the centre accelerates), there with the tool tilted (lead 15, tilt 10 deg), and on a
+// straight pass with a jerky correction (knots every 50 us, where G' jumps and no step across
+// may land). Every landing is checked against a full probe at its time: the phase and the lag
+// within the 1e-10 rad it claims, the height and rho to round-off.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <memory>
@@ -106,6 +106,62 @@ TEST_CASE("land: a Newton step taken without a probe lands where a probe says (c
   // Both ways are taken: most landings hold, and the long steps are refused.
   CHECK(n.landed > 100);
   CHECK(n.refused > 20);
+}
+
+TEST_CASE("land: a Newton step taken without a probe lands where a probe says (tilted tool)",
+          "[tooth_passage][near-axis][posture]") {
+  // Lead 15 and tilt 10 deg: the moving point is the ball point over the node in the tool
+  // frame, whose lift from the plan stretches and bends its motion.
+  auto doc = topomill::SceneDocument::parse_string(
+      testing::paper_scene("plugin = 'convex_arc'\nradius = 50.0", 0.0, 0.2, 0.2, 0.01) +
+          "[path]\nplugin = 'raster'\nlead = 15.0\ntilt = 10.0\n",
+      "land.toml");
+  topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
+  const topomill::Prepared m = topomill::prepare(doc.resolve(catalog), catalog);
+  const Landings n = check_landings(*m.tool, *m.layout.path, m.layout.kappa, 7);
+  CHECK(n.landed > 50);
+  CHECK(n.refused > 20);
+}
+
+TEST_CASE("land: the lift's speed and acceleration bounds hold along random plan paths",
+          "[tooth_passage][posture]") {
+  // q(t) = q0 + v0 t + a t^2 / 2 over [0, 1e-3] s (|a| <= A), out to 0.95 R; P'(t) and P''(t)
+  // of the lift by central differences; plan, v and A the path's own largest.
+  const double R = 5.0;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  auto lift = [&](const Vec3& q) {
+    return Vec3(q.x(), q.y(), -std::sqrt(R * R - q.squaredNorm()));
+  };
+  int checked = 0;
+  for (int n = 0; n < 2000; ++n) {
+    const double reach = 0.95 * R * std::abs(unit(rng));
+    const Vec3 q0(reach * unit(rng), reach * unit(rng), 0), v0(400 * unit(rng), 400 * unit(rng), 0),
+        a(3e5 * unit(rng), 3e5 * unit(rng), 0);
+    double plan = 0, v = 0;
+    const double T = 1e-3;
+    for (int i = 0; i <= 100; ++i) {
+      const double t = T * i / 100;
+      plan = std::max(plan, (q0 + v0 * t + 0.5 * a * t * t).norm());
+      v = std::max(v, (v0 + a * t).norm());
+    }
+    if (plan >= 0.95 * R) continue;
+    const auto b = PassageGeometry::lift_bounds(R, plan, v, a.norm());
+    double top_v = 0, top_a = 0;
+    const double e = 1e-7;
+    for (int i = 1; i < 100; ++i) {
+      const double t = T * i / 100;
+      auto at = [&](double s) { return lift(q0 + v0 * s + 0.5 * a * s * s); };
+      top_v = std::max(top_v, ((at(t + e) - at(t - e)) / (2 * e)).norm());
+      top_a = std::max(top_a, ((at(t + e) - 2 * at(t) + at(t - e)) / (e * e)).norm());
+    }
+    INFO("plan " << plan << " v " << v << " A " << a.norm() << ": speed " << top_v << " bound "
+                 << b.L * v << ", accel " << top_a << " bound " << b.accel);
+    CHECK(top_v <= b.L * v * (1 + 1e-6));
+    CHECK(top_a <= b.accel * (1 + 1e-3) + 1e-3);  // (round-off in the second differences)
+    ++checked;
+  }
+  CHECK(checked > 1000);
 }
 
 TEST_CASE("land: no step lands across a knot of a jerky correction", "[tooth_passage][near-axis]") {
