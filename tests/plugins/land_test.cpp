@@ -10,6 +10,7 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <string>
 
 #include "fixtures/flat_surface.hpp"
 #include "pipeline.hpp"
@@ -93,16 +94,21 @@ Landings check_landings(const topomill::ToolGeometry& tool, const topomill::Tool
   return out;
 }
 
+// The same on the paper's convex arc at lambda 0, with `path` (a [path] table) appended.
+Landings on_paper_arc(const std::string& path, unsigned seed) {
+  auto doc = topomill::SceneDocument::parse_string(
+      testing::paper_scene("plugin = 'convex_arc'\nradius = 50.0", 0.0, 0.2, 0.2, 0.01) + path,
+      "land.toml");
+  topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
+  const topomill::Prepared m = topomill::prepare(doc.resolve(catalog), catalog);
+  return check_landings(*m.tool, *m.layout.path, m.layout.kappa, seed);
+}
+
 }  // namespace
 
 TEST_CASE("land: a Newton step taken without a probe lands where a probe says (convex arc)",
           "[tooth_passage][near-axis]") {
-  auto doc = topomill::SceneDocument::parse_string(
-      testing::paper_scene("plugin = 'convex_arc'\nradius = 50.0", 0.0, 0.2, 0.2, 0.01),
-      "land.toml");
-  topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
-  const topomill::Prepared m = topomill::prepare(doc.resolve(catalog), catalog);
-  const Landings n = check_landings(*m.tool, *m.layout.path, m.layout.kappa, 5);
+  const Landings n = on_paper_arc("", 5);
   // Both ways are taken: most landings hold, and the long steps are refused.
   CHECK(n.landed > 100);
   CHECK(n.refused > 20);
@@ -112,13 +118,7 @@ TEST_CASE("land: a Newton step taken without a probe lands where a probe says (t
           "[tooth_passage][near-axis][posture]") {
   // Lead 15 and tilt 10 deg: the moving point is the ball point over the node in the tool
   // frame, whose lift from the plan stretches and bends its motion.
-  auto doc = topomill::SceneDocument::parse_string(
-      testing::paper_scene("plugin = 'convex_arc'\nradius = 50.0", 0.0, 0.2, 0.2, 0.01) +
-          "[path]\nplugin = 'raster'\nlead = 15.0\ntilt = 10.0\n",
-      "land.toml");
-  topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
-  const topomill::Prepared m = topomill::prepare(doc.resolve(catalog), catalog);
-  const Landings n = check_landings(*m.tool, *m.layout.path, m.layout.kappa, 7);
+  const Landings n = on_paper_arc("[path]\nplugin = 'raster'\nlead = 15.0\ntilt = 10.0\n", 7);
   CHECK(n.landed > 50);
   CHECK(n.refused > 20);
 }
