@@ -5,9 +5,10 @@
 // (constant lead: Psi_u -> 0; loxodrome: Psi_u -> -tan(gamma), the log spiral).
 //
 // The tool is a plugin, so Psi_u and Psi_uu are sampled, not known in closed form: a table over
-// rho keeps, per bin, their largest magnitudes at the bin's ends and middle, widened by 10 %.
-// That bounds them wherever they are monotone within a bin (both built-in edges everywhere; a
-// bin is R / 4096 wide); the brute-force scan (node_walk.hpp) and the tests check the rest.
+// rho keeps, per bin, their largest magnitudes at the bin's ends and middle, widened by 10 %,
+// and the largest of those from the axis out to the bin (over()). That bounds them wherever they
+// are monotone within a bin (both built-in edges everywhere; a bin is R / 4096 wide); the
+// brute-force scan (node_walk.hpp) and the tests check the rest.
 //
 // At the rim (rho -> R, the ball's equator) the slope has no bound: rho = R sin(alpha) stops
 // growing while the lag still turns with alpha. The lag itself stays finite there (a loxodrome's
@@ -93,8 +94,8 @@ class LagShape {
   static constexpr std::size_t kBins = 4096;
 
   // The bin holding rho, clamped to the table (NaN to the first): truncation is floor where it
-  // converts (rho is not negative there). A division, floor and clamp in doubles for each end
-  // were 3 % of the ideal walk's instructions at lambda 0.
+  // converts (rho is not negative there). A division, floor and clamp in doubles were 3 % of the
+  // ideal walk's instructions at lambda 0 (session 19, when a range read two bins).
   std::size_t bin(double rho) const {
     const double x = rho * (kBins / R_);
     if (!(x > 0)) return 0;

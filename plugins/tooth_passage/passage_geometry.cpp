@@ -528,13 +528,13 @@ bool PassageGeometry::turns_by(double lo, double hi, double turn) const {
   return std::abs(std::abs(sum) - turn) < 1e-6;
 }
 
-double PassageGeometry::clearance(double out) const {
+double PassageGeometry::clearance(double out, double speed) const {
   const double k1 = s_.lag_shape.slope_to(out);
-  return 1.01 * std::sqrt(1 + k1 * k1) * s_.plan_line[win_].speed / std::abs(s_.omega);
+  return 1.01 * std::sqrt(1 + k1 * k1) * speed / std::abs(s_.omega);
 }
 
 bool PassageGeometry::clears_line(double out) const {
-  return !tilted_ && !turning_ && line_gap_ >= clearance(out);
+  return !tilted_ && !turning_ && line_gap_ >= clearance(out, s_.plan_line[win_].speed);
 }
 
 bool PassageGeometry::monotone_around(double t, double duration) const {
@@ -559,8 +559,7 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
       const double speed = L * v + turn_speed(), moved = speed * half;
       if (rho + moved <= 0.95 * s_.R) {
         if (rho - 1.01 * moved >= 1.01 * s_.gap_lag * speed / w) return half;
-        const double k1 = s_.lag_shape.slope_to(rho + moved);
-        if (rho - 1.01 * moved >= 1.01 * std::sqrt(1 + k1 * k1) * speed / w) return half;
+        if (rho - 1.01 * moved >= clearance(rho + moved, speed)) return half;
       }
     }
   } else if (const auto [lo, hi] = s_.gap_rho[win_]; rho <= hi) {
@@ -572,7 +571,7 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
     // The node far enough from the line with the lag's slope over the whole ball (gap_lag, at
     // least the one below): most nodes, settled without the table.
     if (far_from_line()) return half;
-    if (std::max(rho - 1.01 * v * half, line_gap_) >= clearance(rho + v * half)) return half;
+    if (std::max(rho - 1.01 * v * half, line_gap_) >= clearance(rho + v * half, v)) return half;
   }
   const Span sp = span(std::min(t, t + dir * half), std::max(t, t + dir * half));
   return sp.monotone(w) ? std::min(half, kTwoPi / sp.top(w)) : 0.0;

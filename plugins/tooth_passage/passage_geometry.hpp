@@ -487,9 +487,10 @@ class PassageGeometry {
   // the axis (gap_lag takes it to 0.95 R, where a loxodrome's is twice its tip's), as next_gap
   // does.
   bool clears_line(double out) const;
-  // How far from the axis the node must stay for |G' - omega| < omega / 1.01 while it is within
-  // `out` of the axis: S v / omega, S from the lag's slope out to there (LagShape::slope_to).
-  double clearance(double out) const;
+  // How far from the axis the moving point (moving at most at `speed`) must stay for
+  // |G' - omega| < omega / 1.01 while it is within `out` of the axis: S v / omega, S from the
+  // lag's slope out to there (LagShape::slope_to).
+  double clearance(double out, double speed) const;
   // The same within `duration` either side of t.
   bool monotone_around(double t, double duration) const;
   // Whether the phase is certainly monotone on [a, b] by the crude bound alone.

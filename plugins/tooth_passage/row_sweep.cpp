@@ -249,11 +249,15 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
   // root nearest it, if any): the walk's steps and first crossings next to an exact revolution
   // then start from the last node's roots too.
   zone_roots_.clear();
+  // A root at t for the next node: its move from the last node's root `match` (if any), and
+  // that move's change.
+  auto root_at = [](double t, const Root* match, double slope) {
+    const double drift = match ? t - match->t : 0.0;
+    return Root{t, drift, slope, match ? drift - match->drift : 0.0};
+  };
   auto keep = [&](const PassageGeometry::Crossing& c, std::vector<Root>& into) {
     const Root* match = nearest(st.roots[static_cast<std::size_t>(c.tooth)], c.t, 0.25 * rev);
-    const double drift = match ? c.t - match->t : 0.0;
-    into.push_back(
-        {c.t, drift, match ? match->slope : s_.omega, match ? drift - match->drift : 0.0});
+    into.push_back(root_at(c.t, match, match ? match->slope : s_.omega));
   };
   // Tooth 0's probes at the ends of the zone's last exact solve, and where: the walks from the
   // zone's edges start there (after the zone grew on one side, the other's no longer matches its
@@ -341,8 +345,7 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
       // is up to 1e-9 rad off, which the extrapolation above amplifies, so that on smooth passes
       // the next node's guess often missed the tolerance by that alone (lambda 30: 15 % of the
       // instructions). The height stays the probe's.
-      const double root = t - q.g / slope, drift = match ? root - match->t : 0.0;
-      fresh_.push_back({root, drift, slope, match ? drift - match->drift : 0.0});
+      fresh_.push_back(root_at(t - q.g / slope, match, slope));
       return t;
     };
     // The first crossing: near t_b where the phase is monotone around it (the secant can run
