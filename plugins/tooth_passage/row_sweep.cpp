@@ -41,6 +41,8 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
   // A pass that cannot lower the node ends its side; with a correction (each pass has its own),
   // only the second in a row does.
   const int misses_to_stop = s_.wiggles ? 2 : 1;
+  // The parallel pass (its place in by_line_) that gave the last node its height; -1 if none.
+  std::ptrdiff_t winner = -1;
   for (std::size_t i = 0; i < xs.size(); ++i) {
     if (s_.stopped()) return;  // the map is discarded
     const double x = xs[i], key = s_.along_y ? x : y;
@@ -70,25 +72,44 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
         visit(entry.second);
       }
     }
-    // Passes nearest first, outwards on both sides.
-    std::ptrdiff_t right =
-        s_.parallel ? std::lower_bound(by_line_.begin(), by_line_.end(), key,
-                                       [&](std::size_t p, double v) { return s_.line[p] < v; }) -
-                          by_line_.begin()
-                    : 0;
+    // Passes outwards on both sides from a start: the pass that gave the node before its height,
+    // where that one reaches this node, else the nearest line. A side ends at its first pass
+    // that cannot lower the node, which is exact from any start as long as the passes'
+    // envelopes over the node fall to one lowest and rise beyond it, the order of the lines (the
+    // walk assumed that from the nearest line before). A pass out of reach ends a side only
+    // because the farther ones are farther still: true from a start within reach. On a face
+    // inclined across the passes the pass that cuts a node has its line R sin(lambda) from it
+    // in plan, so from the nearest line every pass in between was walked first (lambda 30 with
+    // the passes along the cylinder's axis: 12 passages a node, 3 from the last winner).
+    std::ptrdiff_t right = 0;
+    double from = key;  // where the sides are measured from
+    if (s_.parallel) {
+      const bool winner_reaches =
+          winner >= 0 &&
+          std::abs(key - s_.line[by_line_[static_cast<std::size_t>(winner)]]) < s_.reach;
+      if (winner_reaches)
+        right = winner, from = s_.line[by_line_[static_cast<std::size_t>(winner)]];
+      else
+        right = std::lower_bound(by_line_.begin(), by_line_.end(), key,
+                                 [&](std::size_t p, double v) { return s_.line[p] < v; }) -
+                by_line_.begin();
+    }
     std::ptrdiff_t left = right - 1;
     bool left_open = s_.parallel && left >= 0, right_open = s_.parallel && right < n;
     int misses[2] = {0, 0};
+    winner = -1;
     while (left_open || right_open) {
       const bool take_left =
           !right_open ||
-          (left_open && key - s_.line[by_line_[static_cast<std::size_t>(left)]] <=
-                            s_.line[by_line_[static_cast<std::size_t>(right)]] - key);
+          (left_open && from - s_.line[by_line_[static_cast<std::size_t>(left)]] <=
+                            s_.line[by_line_[static_cast<std::size_t>(right)]] - from);
       std::ptrdiff_t& at = take_left ? left : right;
       bool& open = take_left ? left_open : right_open;
       int& missed = misses[take_left ? 0 : 1];
       const std::size_t p = by_line_[static_cast<std::size_t>(at)];
+      const double before = best;
       const bool can_lower = std::abs(key - s_.line[p]) < s_.reach && visit(p);
+      if (best < before) winner = at;
       // The seed's pass is skipped as a matter of course: that is not a side's end.
       missed = can_lower || p == seeded ? 0 : missed + 1;
       at += take_left ? -1 : 1;

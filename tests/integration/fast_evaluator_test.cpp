@@ -197,6 +197,20 @@ TEST_CASE("the row walk gives the node walk's heights", "[fast][reference]") {
   CHECK(worst <= 1e-9);
 }
 
+TEST_CASE("passes are walked from the one that cut the node before", "[fast][work]") {
+  // With the passes along the cylinder's axis at lambda 30 the face is inclined across them: the
+  // pass that cuts a node has its line R sin(30 deg) = 2.5 mm from the node in plan, about nine
+  // lines away. Walked outwards from the nearest line, every pass in between was walked first
+  // (9.06 passages a node on this patch); from the pass that gave the node before its height,
+  // 3.18. The heights are the node walk's either way (the "across" case above).
+  const auto run = run_scene(paper_scene(kConvex, 30.0, 0.35, 0.35, 0.01),
+                             {"evaluator.plugin=tooth_passage", "path.plugin=raster_across"});
+  const double per_node = static_cast<double>(run.work.at("tooth_passages")) /
+                          static_cast<double>(run.work.at("nodes"));
+  INFO(per_node << " passages a node");
+  CHECK(per_node < 4.5);
+}
+
 TEST_CASE("both walks find the lowest crossing that a brute-force scan finds",
           "[fast][reference]") {
   // walk = "scan" samples g at a 256th of a tooth period (and a quarter of a correction step)
