@@ -74,13 +74,13 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
     }
     // Passes outwards on both sides from a start: the pass that gave the node before its height,
     // where that one reaches this node, else the nearest line. A side ends at its first pass
-    // that cannot lower the node, which is exact from any start as long as the passes'
-    // envelopes over the node fall to one lowest and rise beyond it, the order of the lines (the
-    // walk assumed that from the nearest line before). A pass out of reach ends a side only
+    // that cannot lower the node. That is exact from any start as long as the passes' envelopes
+    // over the node, taken in the order of their lines, fall to one lowest and rise beyond it
+    // (the walk assumed that from the nearest line before). A pass out of reach ends a side only
     // because the farther ones are farther still: true from a start within reach. On a face
     // inclined across the passes the pass that cuts a node has its line R sin(lambda) from it
     // in plan, so from the nearest line every pass in between was walked first (lambda 30 with
-    // the passes along the cylinder's axis: 12 passages a node, 3 from the last winner).
+    // the passes along the cylinder's axis: 12.1 passages a node, 3.0 from the last winner).
     std::ptrdiff_t right = 0;
     double from = key;  // where the sides are measured from
     if (s_.parallel) {

@@ -142,11 +142,11 @@ TEST_CASE("the row walk gives the node walk's heights", "[fast][reference]") {
   // walk = "row" follows passages from node to node and ends walks on bounds; walk = "node" is
   // the reference that solves each node from scratch. They must agree to the crossings'
   // round-off (1e-11 mm) everywhere: at lambda 0 (the tool's tip, handed to the reference), on
-  // the paper's slope, steep, stepping across, another edge with four teeth, on a vibrating
-  // and deflected path (at lambda 30, and at 0 where every node is the reference's), and along the
-  // shipped radial-then-spiral CL path (bent passes in straight windows of a tenth of a tooth
-  // period, beyond whose ends most nodes lie), also with its vibration and deflection (2 735
-  // windows of one pass's corrections).
+  // the paper's slope, steep, stepping across (at 30 and 60 deg), another edge with four teeth, on
+  // a vibrating and deflected path (at lambda 30, and at 0 where every node is the reference's),
+  // and along the shipped radial-then-spiral CL path (bent passes in straight windows of a tenth
+  // of a tooth period, beyond whose ends most nodes lie), also with its vibration and deflection
+  // (2 735 windows of one pass's corrections).
   struct Case {
     const char* name;
     double lambda;
@@ -157,6 +157,9 @@ TEST_CASE("the row walk gives the node walk's heights", "[fast][reference]") {
   const Case c = GENERATE_COPY(
       Case{"tip", 0.0, {}, ""}, Case{"paper slope", 30.0, {}, ""}, Case{"steep", 60.0, {}, ""},
       Case{"across", 30.0, {"path.plugin=raster_across"}, ""},
+      // Steeper across: the cutting pass's line 4.3 mm from the node in plan, where the row walk
+      // starts from the last node's winner and the node walk asks every pass.
+      Case{"steep, across", 60.0, {"path.plugin=raster_across"}, ""},
       Case{"four teeth, constant lead",
            30.0,
            {"tool.plugin=ball_end_constant_lead", "tool.teeth=4"},
