@@ -81,14 +81,14 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
     // inclined across the passes the pass that cuts a node has its line R sin(lambda) from it
     // in plan, so from the nearest line every pass in between was walked first (lambda 30 with
     // the passes along the cylinder's axis: 12.1 passages a node, 3.0 from the last winner).
+    // The line of the pass at place i of by_line_.
+    auto line_at = [&](std::ptrdiff_t i) { return s_.line[by_line_[static_cast<std::size_t>(i)]]; };
     std::ptrdiff_t right = 0;
     double from = key;  // where the sides are measured from
     if (s_.parallel) {
-      const bool winner_reaches =
-          winner >= 0 &&
-          std::abs(key - s_.line[by_line_[static_cast<std::size_t>(winner)]]) < s_.reach;
+      const bool winner_reaches = winner >= 0 && std::abs(key - line_at(winner)) < s_.reach;
       if (winner_reaches)
-        right = winner, from = s_.line[by_line_[static_cast<std::size_t>(winner)]];
+        right = winner, from = line_at(winner);
       else
         right = std::lower_bound(by_line_.begin(), by_line_.end(), key,
                                  [&](std::size_t p, double v) { return s_.line[p] < v; }) -
@@ -100,9 +100,7 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
     winner = -1;
     while (left_open || right_open) {
       const bool take_left =
-          !right_open ||
-          (left_open && from - s_.line[by_line_[static_cast<std::size_t>(left)]] <=
-                            s_.line[by_line_[static_cast<std::size_t>(right)]] - from);
+          !right_open || (left_open && from - line_at(left) <= line_at(right) - from);
       std::ptrdiff_t& at = take_left ? left : right;
       bool& open = take_left ? left_open : right_open;
       int& missed = misses[take_left ? 0 : 1];
