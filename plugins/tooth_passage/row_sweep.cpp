@@ -268,15 +268,9 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
   // root nearest it, if any): the walk's steps and first crossings next to an exact revolution
   // then start from the last node's roots too.
   zone_roots_.clear();
-  // A root at t for the next node: its move from the last node's root `match` (if any), and
-  // that move's change.
-  auto root_at = [](double t, const Root* match, double slope) {
-    const double drift = match ? t - match->t : 0.0;
-    return Root{t, drift, slope, match ? drift - match->drift : 0.0};
-  };
   auto keep = [&](const PassageGeometry::Crossing& c, std::vector<Root>& into) {
     const Root* match = nearest(st.roots[static_cast<std::size_t>(c.tooth)], c.t, 0.25 * rev);
-    into.push_back(root_at(c.t, match, match ? match->slope : s_.omega));
+    into.push_back(Root::followed(c.t, match, match ? match->slope : s_.omega));
   };
   // Tooth 0's probes at the ends of the zone's last exact solve, and where: the walks from the
   // zone's edges start there (after the zone grew on one side, the other's no longer matches its
@@ -352,19 +346,16 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
             reach = std::abs(r.t + r.drift - guess), match = &r;
       matched = match;
       double slope = match ? match->slope : s_.omega;
-      // Started where the root's last two moves say it goes on to (on smooth passes the guess
-      // is then often within the tolerance and one probe settles it: 7 % of the instructions at
-      // lambda 30). A root met for the first time has no move (drift 0), so the node after it
-      // takes its whole first move as the bend: leaving the bend out there measured 0.6 % more
-      // instructions, not fewer.
-      const double t =
-          geo.crossing(tooth, match ? match->t + match->drift + match->bend : guess, slope, q);
+      // Started where the root's last moves say it goes on to (Root::ahead: on smooth passes the
+      // guess is then often within the tolerance and one probe settles it; 7 % of the
+      // instructions at lambda 30 with the last two moves, and 7-8 % near the axis with five).
+      const double t = geo.crossing(tooth, match ? match->ahead() : guess, slope, q);
       if (!PassageGeometry::converged(q)) return double(NAN);
       // The root kept for the next node is one more Newton step on (no probe): the probed time
       // is up to 1e-9 rad off, which the extrapolation above amplifies, so that on smooth passes
       // the next node's guess often missed the tolerance by that alone (lambda 30: 15 % of the
       // instructions). The height stays the probe's.
-      fresh_.push_back(root_at(t - q.g / slope, match, slope));
+      fresh_.push_back(Root::followed(t - q.g / slope, match, slope));
       return t;
     };
     // The first crossing: near t_b where the phase is monotone around it (the secant can run
