@@ -701,6 +701,15 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
     return floor >= below - 16 * std::numeric_limits<double>::epsilon() * (std::abs(below) + s_.R);
   };
   const int first = only < 0 ? 0 : only, last = only < 0 ? s_.teeth - 1 : only;
+  // The probes' phases carry round-off of a few ulps of their largest terms (omega t, the pass's
+  // phase, the wrap). Where the phase turns at exactly its bound's rate (a node on the pass's line
+  // with no lag turning there: the azimuth stands still, so G' = omega and the bound is tight), a
+  // crossing inside a piece makes |g_a| + |g_b| equal its reach but for that round-off, which must
+  // not rule the crossing out: before session 25 it did in about half such pieces, and on the
+  // convex case's pass line a crossing 0.11 nm below the tip's cut was lost so
+  // (tests/plugins/exact_window_test.cpp).
+  const double roundoff = 32 * std::numeric_limits<double>::epsilon() *
+                          (w * std::max(std::abs(a), std::abs(b)) + std::abs(phase_) + 8 * M_PI);
   // Tooth j's phase is tooth 0's turned by its angle: one probe serves all.
   auto offset = [&](int j) { return s_.tooth_angle[j] - s_.tooth_angle[0]; };
   // The first whole turn m at or above phase v for tooth j: its level is m 2 pi - offset(j).
@@ -751,7 +760,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
       found(first, 0.5 * (p.lo.at.t + p.hi.at.t));
       return true;
     }
-    const double reach = sp.turn(w, h);
+    const double reach = sp.turn(w, h) + roundoff;
     bool reachable = false;
     for (int j = first; j <= last && !reachable; ++j)
       reachable =
