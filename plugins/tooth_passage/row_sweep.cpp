@@ -469,7 +469,9 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
           ok = true;  // behind the edge: the exact solve has it already
         } else if (!std::isnan(t) && moved > (at_root ? 0.25 * rev : 0)) {
           if (moved <= 1.1 * rev) {
-            ok = (!easy && ahead.top(w) * moved < need + kTwoPi) ||
+            // (Less by a margin: where the bound is tight, G' = omega on a pass's line, a solve
+            // that went one turn too far has top * moved = need + 2 pi but for round-off.)
+            ok = (!easy && ahead.top(w) * moved < need + kTwoPi - 1e-6) ||
                  geo.turned(need, t_prev, q_prev, t, q);
           } else if ((at_root && geo.monotone_from(rho_prev, moved)) || geo.monotone(far, t)) {
             const Probe q_far = geo.probe(tooth, far);
