@@ -47,8 +47,9 @@ class RowSweep {
     // throws the guess far (at 20 um at lambda 0 onto other crossings, and the walk then solved
     // revolution after revolution exactly: 80 times the instructions), so ahead() adds an
     // order only while its difference is smaller than the one below.
+    static constexpr int kOrder = 5;  // the extrapolation's highest order
     double bend = 0;
-    std::array<double, 3> higher{};
+    std::array<double, kOrder - 2> higher{};
     int known = 0;
     // Corrected paths only: where it was solved, the edge's height there, and how fast that
     // height can fall along the row (mm/mm) for `reach` either side; infinite when unknown.
@@ -62,7 +63,7 @@ class RowSweep {
       if (!last) return Root{t, 0.0, slope};
       Root r{t, t - last->t, slope};
       r.bend = r.drift - last->drift;
-      r.known = std::min(last->known + 1, 5);
+      r.known = std::min(last->known + 1, kOrder);
       r.higher[0] = r.known >= 3 ? r.bend - last->bend : 0.0;
       r.higher[1] = r.known >= 4 ? r.higher[0] - last->higher[0] : 0.0;
       r.higher[2] = r.known >= 5 ? r.higher[1] - last->higher[1] : 0.0;

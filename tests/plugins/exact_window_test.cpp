@@ -12,24 +12,16 @@
 #include <random>
 #include <vector>
 
-#include "pipeline.hpp"
-#include "scene.hpp"
-#include "support/scenes.hpp"
-#include "tooth_passage/passage_geometry.hpp"
+#include "support/passage_roots.hpp"
 
 using topomill::plugins::PassageGeometry;
 using topomill::plugins::PassageSetup;
 
 TEST_CASE("an exact window finds a crossing where the phase turns at exactly its bound's rate",
           "[tooth_passage][near-axis]") {
-  auto doc = topomill::SceneDocument::parse_string(
-      testing::paper_scene("plugin = 'convex_arc'\nradius = 50.0", 0.0, 0.2, 0.2, 0.01),
-      "exact-window.toml");
-  for (const char* o : {"tool.plugin=ball_end_constant_lead", "tool.helix_angle=0",
-                        "cutting.depth_of_cut=0.02", "cutting.spindle_direction=ccw"})
-    doc.apply_override(o);
-  topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
-  const topomill::Prepared m = topomill::prepare(doc.resolve(catalog), catalog);
+  const topomill::Prepared m =
+      testing::paper_arc("", {"tool.plugin=ball_end_constant_lead", "tool.helix_angle=0",
+                              "cutting.depth_of_cut=0.02", "cutting.spindle_direction=ccw"});
   topomill::EvaluationRequest rq;
   rq.tool = m.tool.get(), rq.path = m.layout.path.get(), rq.kappa = m.layout.kappa;
   const PassageSetup s(rq, 0.1, 12);
@@ -51,20 +43,8 @@ TEST_CASE("an exact window finds a crossing where the phase turns at exactly its
     // on, where the node is 0.1 um from the axis), by sampling every 2 us and bisecting to
     // round-off.
     for (int tooth = 0; tooth < s.teeth; ++tooth) {
-      const double a = t0 + 1e-5, b = t0 + 0.5 * s.rev, step = 2e-6;
-      double lo = a, g_lo = geo.probe(tooth, a).g;
-      for (double hi = a + step; hi <= b; lo = hi, hi += step) {
-        const double g_hi = geo.probe(tooth, hi).g;
-        const bool crosses = PassageGeometry::crosses(g_lo, g_hi);
-        const double g_was = g_lo;
-        g_lo = g_hi;
-        if (!crosses) continue;
-        double l = lo, h = hi;
-        for (int k = 0; k < 200 && h - l > 1e-15; ++k) {
-          const double mid = 0.5 * (l + h);
-          ((geo.probe(tooth, mid).g < 0) == (g_was < 0) ? l : h) = mid;
-        }
-        const double root = 0.5 * (l + h);
+      for (const double root :
+           testing::sampled_roots(geo, tooth, t0 + 1e-5, t0 + 0.5 * s.rev, 2e-6, 1e-15)) {
         if (!geo.probe(tooth, root).over) continue;  // out of contact: no window need find it
         // Windows around it, 1e-8 to 1e-4 s either side (none reaching back to the axis).
         for (int k = 0; k < 40; ++k) {

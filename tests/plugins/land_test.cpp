@@ -16,6 +16,7 @@
 #include "pipeline.hpp"
 #include "scene.hpp"
 #include "support/builtin_models.hpp"
+#include "support/passage_roots.hpp"
 #include "support/scenes.hpp"
 #include "tooth_passage/passage_geometry.hpp"
 
@@ -46,19 +47,8 @@ Landings check_landings(const topomill::ToolGeometry& tool, const topomill::Tool
     const double x = c.x() + along(rng), y = c.y() + across(rng);
     const PassageGeometry geo(s, 0, x, y, radii.first, radii.second);
     // Sign changes of g over two revolutions around t_mid, bisected to round-off.
-    const int steps = 4000;
-    const double a = t_mid - s.rev, h = 2 * s.rev / steps;
-    double g_prev = geo.probe(0, a).g;
-    for (int i = 1; i <= steps; ++i) {
-      double lo = a + (i - 1) * h, hi = a + i * h;
-      const double g_hi = geo.probe(0, hi).g, g_lo = g_prev;
-      g_prev = g_hi;
-      if ((g_lo < 0) == (g_hi < 0) || std::abs(g_hi - g_lo) > M_PI) continue;
-      for (int k = 0; k < 200 && hi - lo > 1e-16; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        ((geo.probe(0, mid).g < 0) == (g_lo < 0) ? lo : hi) = mid;
-      }
-      const double root = 0.5 * (lo + hi);
+    for (const double root :
+         testing::sampled_roots(geo, 0, t_mid - s.rev, t_mid + s.rev, 2 * s.rev / 4000, 1e-16)) {
       for (const double off : {1e-12, 1e-10, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4})
         for (const double sign : {-1.0, 1.0}) {
           const double t0 = root + sign * off;
@@ -96,11 +86,7 @@ Landings check_landings(const topomill::ToolGeometry& tool, const topomill::Tool
 
 // The same on the paper's convex arc at lambda 0, with `path` (a [path] table) appended.
 Landings on_paper_arc(const std::string& path, unsigned seed) {
-  auto doc = topomill::SceneDocument::parse_string(
-      testing::paper_scene("plugin = 'convex_arc'\nradius = 50.0", 0.0, 0.2, 0.2, 0.01) + path,
-      "land.toml");
-  topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
-  const topomill::Prepared m = topomill::prepare(doc.resolve(catalog), catalog);
+  const topomill::Prepared m = testing::paper_arc(path);
   return check_landings(*m.tool, *m.layout.path, m.layout.kappa, seed);
 }
 

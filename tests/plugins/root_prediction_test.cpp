@@ -4,8 +4,9 @@
 // shrink left out too. Checked against sequences written here: powers of (n + 20) in the node's
 // index n (their differences shrink with the order, as a smooth root's do on a fine grid) are
 // exact up to degree 5 once five nodes are known, and off by exactly the sixth difference (6! b)
-// for b (n + 20)^6, so an order dropped or added fails; a young root uses only what it holds; a
-// root whose differences grow is extrapolated by its parabola.
+// for b (n + 20)^6, so an order dropped or added fails; a young root uses only what it holds
+// (a parabola from its vertex shows an order let in early); a root whose differences grow is
+// extrapolated by its parabola.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <functional>
@@ -71,6 +72,11 @@ TEST_CASE("a young root's prediction uses only the orders its history holds") {
   CHECK(std::abs(predicted(cubic, 1) - (t1 + 2 * (t1 - t0))) < 1e-15);
   CHECK(std::abs(predicted(cubic, 2) - (3 * t2 - 3 * t1 + t0)) < 1e-15);
   for (int n = 3; n < 8; ++n) CHECK(std::abs(predicted(cubic, n) - cubic(n + 1)) < 1e-15);
+  // A parabola from its vertex, c n^2: at node 2 a third difference made from the first move
+  // (counted as the bend: c) would be 2c - c = c, smaller than the bend 2c, so the shrink rule
+  // would let it in (10c against the 9c due); the history must keep it out.
+  const Times vertex = [](int n) { return 0.1 + 1e-6 * n * n; };
+  CHECK(std::abs(predicted(vertex, 2) - vertex(3)) < 1e-15);
 }
 
 TEST_CASE("an order whose difference grows is left out: the grid is coarse for it") {

@@ -1,0 +1,48 @@
+// What the tests of tooth_passage's pieces (land_test, exact_window_test) share: the paper's
+// scene on the convex arc at lambda 0, prepared, and a window's crossings found with no bound and
+// no rule, by sampling a tooth's phase and bisecting each sign change with probes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pipeline.hpp"
+#include "scene.hpp"
+#include "support/scenes.hpp"
+#include "tooth_passage/passage_geometry.hpp"
+
+namespace testing {
+
+// The paper's scene on the convex arc (r 50) at lambda 0, 0.2 mm square at 10 um, with `extra`
+// (TOML tables) appended and `overrides` ("table.key=value") applied.
+inline topomill::Prepared paper_arc(const std::string& extra = "",
+                                    const std::vector<std::string>& overrides = {}) {
+  auto doc = topomill::SceneDocument::parse_string(
+      paper_scene("plugin = 'convex_arc'\nradius = 50.0", 0.0, 0.2, 0.2, 0.01) + extra,
+      "passage.toml");
+  for (const auto& o : overrides) doc.apply_override(o);
+  topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
+  return topomill::prepare(doc.resolve(catalog), catalog);
+}
+
+// Tooth `tooth`'s crossings in [a, b]: the phase sampled every `step`, each sign change (not a
+// wrap) bisected with probes until its bracket is under `width`.
+inline std::vector<double> sampled_roots(const topomill::plugins::PassageGeometry& geo, int tooth,
+                                         double a, double b, double step, double width) {
+  std::vector<double> roots;
+  double lo = a, g_lo = geo.probe(tooth, a).g;
+  for (double hi = a + step; hi <= b; lo = hi, hi += step) {
+    const double g_hi = geo.probe(tooth, hi).g, g_was = g_lo;
+    g_lo = g_hi;
+    if (!topomill::plugins::PassageGeometry::crosses(g_was, g_hi)) continue;
+    double l = lo, h = hi;
+    for (int k = 0; k < 200 && h - l > width; ++k) {
+      const double mid = 0.5 * (l + h);
+      ((geo.probe(tooth, mid).g < 0) == (g_was < 0) ? l : h) = mid;
+    }
+    roots.push_back(0.5 * (l + h));
+  }
+  return roots;
+}
+
+}  // namespace testing
