@@ -247,6 +247,37 @@ class CentreTable {
     return worst;
   }
 
+  // The tabulated nominal centre's velocity in plan along the unit (ux, uy) and across it, over
+  // the whole table: the least and greatest along, the greatest across in size (mm/s). Exact on
+  // each cubic piece, where either component is a quadratic in the piece's parameter.
+  struct LineSpeeds {
+    double along_lo, along_hi, across_hi;
+  };
+  LineSpeeds line_speeds(double ux, double uy) const {
+    // The range of a1 + 2 a2 s + 3 a3 s^2 over s in [0, 1] (per unit s).
+    auto range = [](double a1, double a2, double a3) {
+      const double end = a1 + 2 * a2 + 3 * a3;
+      double lo = std::min(a1, end), hi = std::max(a1, end);
+      if (const double s = a3 != 0 ? -a2 / (3 * a3) : -1; s > 0 && s < 1) {
+        const double v = a1 + 2 * a2 * s + 3 * a3 * s * s;
+        lo = std::min(lo, v), hi = std::max(hi, v);
+      }
+      return std::make_pair(lo, hi);
+    };
+    auto along = [&](const Vec3& v) { return ux * v.x() + uy * v.y(); };
+    auto across = [&](const Vec3& v) { return ux * v.y() - uy * v.x(); };
+    LineSpeeds out{INFINITY, -INFINITY, 0.0};
+    for (std::size_t i = 1; i + 2 < knots_.size(); ++i) {
+      const Cubic& c = cubic_[i];
+      const auto [a_lo, a_hi] = range(along(c[1]), along(c[2]), along(c[3]));
+      const auto [b_lo, b_hi] = range(across(c[1]), across(c[2]), across(c[3]));
+      out.along_lo = std::min(out.along_lo, a_lo * inv_dt_);
+      out.along_hi = std::max(out.along_hi, a_hi * inv_dt_);
+      out.across_hi = std::max(out.across_hi, std::max(-b_lo, b_hi) * inv_dt_);
+    }
+    return out;
+  }
+
   // Upper bounds of the nominal centre's horizontal and vertical speed (mm/s): the knots' chords,
   // with a margin for the bend between them.
   std::pair<double, double> top_speed() const {

@@ -126,6 +126,14 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
     if (len > 0) {
       l.ux = (b.x() - a.x()) / len, l.uy = (b.y() - a.y()) / len;
       l.off = centre.back().plan_deviation(a, l.ux, l.uy) + std::hypot(sx, sy) + 1e-12;
+      if (!wiggles && !tilt && !turn.back().on) {
+        const CentreTable::LineSpeeds v = centre.back().line_speeds(l.ux, l.uy);
+        if (v.along_lo > 0)
+          l.along_lo = v.along_lo,
+          l.speed_hi =
+              std::hypot(std::max(std::abs(v.along_lo), std::abs(v.along_hi)), v.across_hi),
+          l.across_hi = v.across_hi;
+      }
     }
     plan_line.push_back(l);
     const Vec3 sa = a - path->runout_offset(p, t_lo), sb = b - path->runout_offset(p, t_hi);
@@ -537,6 +545,23 @@ bool PassageGeometry::clears_line(double out) const {
   return !tilted_ && !turning_ && line_gap_ >= clearance(out, s_.plan_line[win_].speed);
 }
 
+std::pair<double, double> PassageGeometry::line_rates(double out) const {
+  const PassageSetup::PlanLine& l = s_.plan_line[win_];
+  const double moment = l.along_lo * line_gap_ - l.across_hi * out;
+  if (!(moment > 0) || !(out < s_.R)) return {INFINITY, INFINITY};
+  const double k1 = s_.lag_shape.slope_to(out), S = std::sqrt(1 + k1 * k1);
+  const double scale = l.speed_hi * l.speed_hi / moment;
+  const double slows = 0.5 * (with_spindle_ ? S - 1 : S + 1) * scale;
+  const double speeds = 0.5 * (with_spindle_ ? S + 1 : S - 1) * scale;
+  return {slows, speeds};
+}
+
+double PassageGeometry::line_gap(double rho, double cap) const {
+  const double w = std::abs(s_.omega);
+  const auto [fall, rise] = line_rates(rho + s_.plan_line[win_].speed * cap);
+  return fall < w ? std::min(cap, kTwoPi / (w + rise)) : 0.0;
+}
+
 bool PassageGeometry::monotone_around(double t, double duration) const {
   if (tilted_ || turning_) return false;  // (before reading the table: it never holds then)
   const Vec3 c = table_(t);
@@ -573,6 +598,9 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
     if (far_from_line()) return half;
     if (std::max(rho - 1.01 * v * half, line_gap_) >= clearance(rho + v * half, v)) return half;
   }
+  // On a pass that keeps to its line, by the side the node lies on (no table: near the axis most
+  // walks end here); the gap may then exceed half a revolution.
+  if (const double line = lined() ? line_gap(rho, 1.1 * s_.rev) : 0.0; line > 0) return line;
   const Span sp = span(std::min(t, t + dir * half), std::max(t, t + dir * half));
   return sp.monotone(w) ? std::min(half, kTwoPi / sp.top(w)) : 0.0;
 }

@@ -141,6 +141,11 @@ struct PassageSetup {
   // about v / omega of its line.
   struct PlanLine {
     double x, y, ux, uy, off, speed;
+    // An ideal window of a vertical tool on a fixed frame whose centre always moves forwards
+    // along the line (every pass the path models make): the least speed along it, and the
+    // greatest in plan and across it, exact on the centre's table (PassageGeometry::line_rates).
+    // along_lo is 0 for any other window.
+    double along_lo = 0, speed_hi = INFINITY, across_hi = INFINITY;
   };
   std::vector<PlanLine> plan_line;
   // The centre's top horizontal and vertical speed over [ta, tb] on pass p.
@@ -215,7 +220,11 @@ class PassageGeometry {
         turning_(s.turn[w].on),
         to_tool_(s.to_tool[w]) {
     const PassageSetup::PlanLine& l = s.plan_line[w];
-    line_gap_ = std::abs(l.ux * (y - l.y) - l.uy * (x - l.x)) - l.off;
+    const double across = l.ux * (y - l.y) - l.uy * (x - l.x);
+    line_gap_ = std::abs(across) - l.off;
+    // -az' = (q x v) / rho^2 has the sign of -across (q x v above): with the spindle where that
+    // is omega's.
+    with_spindle_ = across * s.omega < 0;
   }
 
   std::size_t window() const { return win_; }
@@ -478,11 +487,38 @@ class PassageGeometry {
   // probes (advance: the centre keeps to the line's strip, a convex region that leaves the node
   // out), and no span need be asked: most nodes of every scene, all but those within about
   // v / omega of a pass's line.
+  // Closer to the line, on a pass that keeps to it (PlanLine::along_lo), the side the node lies
+  // on settles it (line_rates): where the node's azimuth turns with the spindle the phase is
+  // monotone from a few micrometres out (the paper's loxodrome at its feed: 3.3 um), and there G'
+  // may exceed 2 omega: no caller needs that bound, only the sign and advance's exactness.
   bool monotone_from(double rho, double duration) const {
     const double v = s_.plan_line[win_].speed, out = rho + v * duration;
     if (out > 0.95 * s_.R) return false;
-    return far_from_line() || clears_line(out);
+    return far_from_line() || clears_line(out) ||
+           (lined() && 1.01 * line_rates(out).first < std::abs(s_.omega));
   }
+  // Whether line_rates can know anything here: a window that keeps to its line, the node off it.
+  bool lined() const { return s_.plan_line[win_].along_lo > 0 && line_gap_ > 0; }
+  // Whether the node lies outside the strip its window's centre keeps to (PlanLine), for a
+  // vertical tool on a fixed frame: then the centre stays in a convex region that leaves the node
+  // out, and advance() is exact between any two times of the window's table.
+  bool off_strip() const { return !tilted_ && !turning_ && line_gap_ > 0; }
+  // The phase's rate on a window whose centre keeps to its line (PlanLine::along_lo > 0), at every
+  // time the node is within `out` of the axis, from the side of the line the node lies on:
+  // within [w - fall, w + rise] in the spindle's sense, returned as (fall, rise); infinite where
+  // not known (another window, the node in the line's strip, `out` past the rim). The moment of
+  // the centre's velocity about the node, q x v = along(q) across(v) - across(q) along(v), keeps
+  // the sign of -across(q) and is at least d along_lo - out across_hi in size (d the node's least
+  // distance from the line); bound_rates' last bound, G' - omega = (|v|^2 / (q x v)) f with f
+  // within [(1 - S) / 2, (1 + S) / 2] (S from the lag's slope out to `out`), then gives G' -
+  // omega within (speed_hi^2 / that) [(1 - S) / 2, (1 + S) / 2] in the spindle's sense where the
+  // node's azimuth turns with the spindle, and within the same times [-(1 + S) / 2, (S - 1) / 2]
+  // where it turns against it. A span near the axis bounds the rate by v / rho_lo at best; this
+  // holds all along the pass for the price of one lookup.
+  std::pair<double, double> line_rates(double out) const;
+  // How soon after a crossing `rho` from the axis the same tooth can cross again by line_rates
+  // (a whole turn at the top rate, the phase monotone), up to `cap`; 0 where that is not known.
+  double line_gap(double rho, double cap) const;
   // Nearer the line: the same with the lag's slope only as far out as the node gets, `out` from
   // the axis (gap_lag takes it to 0.95 R, where a loxodrome's is twice its tip's), as next_gap
   // does.
@@ -599,6 +635,9 @@ class PassageGeometry {
   bool tilted_, turning_;
   Eigen::Matrix3d to_tool_;  // the tool frame's transpose when tilted (at t = 0 when turning)
   double line_gap_;  // at most the axis's least distance from the node along the pass (PlanLine)
+  // The side of the line the node lies on: as the centre passes, the node's azimuth turns with the
+  // spindle (line_rates).
+  bool with_spindle_;
 };
 
 }  // namespace topomill::plugins

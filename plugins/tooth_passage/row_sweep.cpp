@@ -396,10 +396,22 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
         };
         // (Past the bottom the envelope only rises: where it is too high at the root itself, it is
         // at the next crossing however soon that comes, and the gap need not be proven.)
-        if (ends_at(at_root ? t_prev + dir * 0.5 * rev : t_prev) &&
-            (!at_root || ends_at(t_prev) ||
-             ends_at(t_prev + dir * geo.next_gap(t_prev, rho_prev, dir))))
-          break;
+        if (ends_at(at_root ? t_prev + dir * 0.5 * rev : t_prev)) {
+          if (!at_root || ends_at(t_prev) ||
+              ends_at(t_prev + dir * geo.next_gap(t_prev, rho_prev, dir)))
+            break;
+        } else if (at_root && geo.lined() && std::abs(rate_prev) < w &&
+                   ends_at(t_prev + dir * kTwoPi / std::abs(rate_prev))) {
+          // Where the phase runs slow (the node's azimuth turning against the spindle as the
+          // axis passes), the next crossing can lie more than half a revolution on, where the
+          // envelope is already too high: the pass's line bounds how soon it can come
+          // (line_gap), and the walk ends without solving it. Asked only where the rate at the
+          // root says the next crossing comes that late, too high. (Lambda 0: 12 % fewer
+          // passages solved and 3 % fewer instructions; the flat vertical case 17 % and 5 %.)
+          if (const double line = geo.line_gap(rho_prev, 1.1 * rev);
+              line > 0.5 * rev && ends_at(t_prev + dir * line))
+            break;
+        }
         // The next revolution exactly, where the next crossing cannot be proven the next.
         auto solve_revolution = [&] {
           exact(tooth, std::min(t_prev, t_prev + dir * rev), std::max(t_prev, t_prev + dir * rev));
@@ -474,8 +486,14 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
             ok = (!easy && ahead.top(w) * moved < need + kTwoPi - 1e-6) ||
                  geo.turned(need, t_prev, q_prev, t, q);
           } else if ((at_root && geo.monotone_from(rho_prev, moved)) || geo.monotone(far, t)) {
-            const Probe q_far = geo.probe(tooth, far);
-            ok = geo.turned(need, t_prev, q_prev, far, q_far, t, q);
+            // (Where the centre keeps to a strip that leaves the node out, the turn over the
+            // whole step is exact at once: no probe at `far`.)
+            if (geo.off_strip()) {
+              ok = geo.turned(need, t_prev, q_prev, t, q);
+            } else {
+              const Probe q_far = geo.probe(tooth, far);
+              ok = geo.turned(need, t_prev, q_prev, far, q_far, t, q);
+            }
           }
         }
         if (!ok) {

@@ -1,0 +1,124 @@
+// tooth_passage's bound of the phase's rate from the side of a pass's line a node lies on
+// (PassageGeometry::line_rates, line_gap). At nodes 1 um to 0.2 mm either side of the line of a
+// pass that keeps to it (the raster on a flat plate and on the paper's convex arc, a loxodrome
+// with a 30 deg helix and a constant-lead edge with none, both spindle directions), the phase's
+// rate G' (rate(): the centre's velocity and the lag's slope where the node is, no bound), sampled
+// every 2 us while the node is within `out` of the axis, must lie within [w - fall, w + rise] in
+// the spindle's sense; and a crossing of a tooth, found by sampling its phase and bisecting, must
+// not follow the one before sooner than line_gap says. The bound must also be of use: on the side
+// where the node's azimuth turns with the spindle it proves the phase monotone from 5 um out
+// (3.3 um for the loxodrome),
+// where the rate's dip is real (seen in the samples), and on the other side the dip it allows must
+// be seen within a tenth of it: with the sides swapped the samples fall outside.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "support/passage_roots.hpp"
+
+using topomill::plugins::PassageGeometry;
+using topomill::plugins::PassageSetup;
+
+namespace {
+
+struct Case {
+  const char* name;
+  std::string workpiece;
+  std::vector<std::string> overrides;
+};
+
+topomill::Prepared prepared(const Case& c) {
+  auto doc = topomill::SceneDocument::parse_string(
+      testing::paper_scene(c.workpiece, 0.0, 0.2, 0.2, 0.01), "line-rates.toml");
+  for (const auto& o : c.overrides) doc.apply_override(o);
+  topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
+  return topomill::prepare(doc.resolve(catalog), catalog);
+}
+
+}  // namespace
+
+TEST_CASE("the side of a pass's line bounds the phase's rate", "[tooth_passage][near-axis]") {
+  const Case c =
+      GENERATE(Case{"convex arc, loxodrome 30, cw", "plugin = 'convex_arc'\nradius = 50.0", {}},
+               Case{"convex arc, loxodrome 30, ccw",
+                    "plugin = 'convex_arc'\nradius = 50.0",
+                    {"cutting.spindle_direction=ccw"}},
+               Case{"flat, constant lead 0, ccw",
+                    "plugin = 'inclined_plane'",
+                    {"tool.plugin=ball_end_constant_lead", "tool.helix_angle=0",
+                     "cutting.spindle_direction=ccw"}},
+               Case{"flat, constant lead 30, cw",
+                    "plugin = 'inclined_plane'",
+                    {"tool.plugin=ball_end_constant_lead", "tool.helix_angle=30"}});
+  INFO(c.name);
+  const topomill::Prepared m = prepared(c);
+  topomill::EvaluationRequest rq;
+  rq.tool = m.tool.get(), rq.path = m.layout.path.get(), rq.kappa = m.layout.kappa;
+  const PassageSetup s(rq, 0.1, 12);
+  REQUIRE(s.parallel);
+  std::size_t middle = 0;  // the pass whose line is nearest the patch's middle (at 0), and the next
+  for (std::size_t k = 1; k < s.line.size(); ++k)
+    if (std::abs(s.line[k]) < std::abs(s.line[middle])) middle = k;
+  REQUIRE(middle + 1 < s.line.size());
+  const double w = std::abs(s.omega), sense = s.omega > 0 ? 1.0 : -1.0, out = 0.3;
+  int samples = 0, outside = 0, gaps = 0, early = 0;
+  double worst_with = 0;  // the largest fall sampled where the azimuth turns with the spindle
+  for (const std::size_t p : {middle, middle + 1})
+    for (const double d : {-0.2, -0.05, -0.02, -0.01, -0.005, -0.003, -0.001, 0.001, 0.003, 0.005,
+                           0.01, 0.02, 0.05, 0.2}) {
+      REQUIRE(s.plan_line[p].along_lo > 0);
+      INFO("pass " << p << " (line " << s.line[p] << " mm), d " << d << " mm");
+      const double x = s.along_y ? s.line[p] + d : 0.0, y = s.along_y ? 0.0 : s.line[p] + d;
+      const double t0 = s.level_time(p, x, y);
+      REQUIRE(std::isfinite(t0));
+      const auto radii = s.contact_radii(p, t0);
+      const PassageGeometry geo(s, p, x, y, radii.first, radii.second);
+      const auto [fall, rise] = geo.line_rates(out);
+      REQUIRE(std::isfinite(fall));
+      // The samples' extremes of the rate's departure from the spindle's, in its sense.
+      double low = 0, high = 0;
+      const double reach = out / s.plan_line[p].speed;  // the node beyond `out` after that
+      for (double t = t0 - reach; t <= t0 + reach; t += 2e-6) {
+        const PassageGeometry::Sample at = geo.sample(t);
+        if (!(geo.distance(t) <= out)) continue;
+        const double r = sense * geo.rate(at, at.dv) - w;
+        if (!std::isfinite(r)) continue;
+        ++samples;
+        low = std::min(low, r), high = std::max(high, r);
+        if (r < -fall * (1 + 1e-9) || r > rise * (1 + 1e-9)) {
+          ++outside;
+          UNSCOPED_INFO("d " << d << " mm, t - t0 " << t - t0 << " s: G' - w " << r << " outside [-"
+                             << fall << ", " << rise << "]");
+        }
+      }
+      // Which side is which: the one whose rate dips (below the spindle's) by more.
+      const bool with_side = -low < high;
+      if (with_side && std::abs(d) >= 0.005) {
+        CHECK(1.01 * fall < w);  // proven monotone there
+        worst_with = std::max(worst_with, -low);
+      }
+      if (!with_side) CHECK(-low > 0.1 * fall);  // the bound's dip is there, within a tenth
+      // Consecutive crossings of tooth 0 near the axis never closer than line_gap says.
+      const auto roots =
+          testing::sampled_roots(geo, 0, t0 - 2 * s.rev, t0 + 2 * s.rev, 2e-6, 1e-15);
+      for (std::size_t k = 0; k + 1 < roots.size(); ++k) {
+        const double rho = geo.distance(roots[k]);
+        const double gap = geo.line_gap(rho, 1.1 * s.rev);
+        if (!(gap > 0)) continue;
+        ++gaps;
+        if (roots[k + 1] - roots[k] < gap * (1 - 1e-9)) {
+          ++early;
+          UNSCOPED_INFO("d " << d << " mm: crossings at " << roots[k] << " and " << roots[k + 1]
+                             << ", line_gap " << gap);
+        }
+      }
+    }
+  INFO(outside << " of " << samples << " rates outside the bound; " << early << " of " << gaps
+               << " crossings sooner than line_gap; largest dip sampled on the with side "
+               << worst_with << " rad/s");
+  CHECK(samples > 10000);
+  CHECK(outside == 0);
+  CHECK(gaps > 20);
+  CHECK(early == 0);
+}
