@@ -129,9 +129,7 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
       if (!wiggles && !tilt && !turn.back().on) {
         const CentreTable::LineSpeeds v = centre.back().line_speeds(l.ux, l.uy);
         if (v.along_lo > 0)
-          l.along_lo = v.along_lo,
-          l.speed_hi =
-              std::hypot(std::max(std::abs(v.along_lo), std::abs(v.along_hi)), v.across_hi),
+          l.along_lo = v.along_lo, l.speed_hi = std::hypot(v.along_hi, v.across_hi),
           l.across_hi = v.across_hi;
       }
     }
@@ -558,7 +556,7 @@ std::pair<double, double> PassageGeometry::line_rates(double out) const {
 
 double PassageGeometry::line_gap(double rho, double cap) const {
   const double w = std::abs(s_.omega);
-  const auto [fall, rise] = line_rates(rho + s_.plan_line[win_].speed * cap);
+  const auto [fall, rise] = line_rates(rho + s_.plan_line[win_].speed_hi * cap);
   return fall < w ? std::min(cap, kTwoPi / (w + rise)) : 0.0;
 }
 
