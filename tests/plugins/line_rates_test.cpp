@@ -6,10 +6,9 @@
 // every 2 us while the node is within `out` of the axis, must lie within [w - fall, w + rise] in
 // the spindle's sense; and a crossing of a tooth, found by sampling its phase and bisecting, must
 // not follow the one before sooner than line_gap says. The bound must also be of use: on the side
-// where the node's azimuth turns with the spindle it proves the phase monotone from 5 um out
-// (3.3 um for the loxodrome),
-// where the rate's dip is real (seen in the samples), and on the other side the dip it allows must
-// be seen within a tenth of it: with the sides swapped the samples fall outside.
+// where the node's azimuth turns with the spindle it proves the phase monotone from 5 um out (3.3
+// um for the loxodrome), and on the other side the dip it allows must be seen in the samples
+// within a tenth of it: with the sides swapped the samples fall outside (mutate row 81).
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
