@@ -479,11 +479,12 @@ class PassageGeometry {
   // the side of t asked for (sample's is the right: a piece ending at a knot asks for the left).
   // `lag_rate`, where given, gets the lag's part of it.
   double rate(const Sample& at, const Vec3& dv, double* lag_rate = nullptr) const;
-  // Whether the phase is monotone, G' within (0, 2 omega), over `duration` from (or to) a time when
-  // the node is `rho` from the axis, for a reason that holds all along the window: a vertical
-  // tool, the node farther from the window's line than S v / omega (PlanLine; S from the lag's
-  // slope over the ball to 0.95 R: gap_lag), and within 0.95 R of the axis all that time (it
-  // moves away at most at the centre's top speed v). Then a step's turn is also exact from its
+  // Whether the phase is monotone (G' > 0 in the spindle's sense) over `duration` from (or to) a
+  // time when the node is `rho` from the axis, for a reason that holds all along the window. Far
+  // from the line G' stays within (0, 2 omega): a vertical tool, the node farther from the
+  // window's line than S v / omega (PlanLine; S from the lag's slope over the ball to 0.95 R:
+  // gap_lag), and within 0.95 R of the axis all that time (it moves away at most at the centre's
+  // top speed v). Then a step's turn is also exact from its
   // probes (advance: the centre keeps to the line's strip, a convex region that leaves the node
   // out), and no span need be asked: most nodes of every scene, all but those within about
   // v / omega of a pass's line.
