@@ -128,7 +128,7 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
       l.off = centre.back().plan_deviation(a, l.ux, l.uy) + std::hypot(sx, sy) + 1e-12;
       if (!wiggles && !tilt && !turn.back().on) {
         const CentreTable::LineSpeeds v = centre.back().line_speeds(l.ux, l.uy);
-        if (v.along_lo > 0)
+        if (v.along_lo > 0 && std::isfinite(v.along_hi))  // (not so for a table with no piece)
           l.along_lo = v.along_lo, l.speed_hi = std::hypot(v.along_hi, v.across_hi),
           l.across_hi = v.across_hi;
       }
