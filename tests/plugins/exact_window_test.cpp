@@ -26,10 +26,7 @@ TEST_CASE("an exact window finds a crossing where the phase turns at exactly its
   rq.tool = m.tool.get(), rq.path = m.layout.path.get(), rq.kappa = m.layout.kappa;
   const PassageSetup s(rq, 0.1, 12);
   REQUIRE(s.parallel);
-  // The pass whose line is nearest the patch's middle; nodes exactly on it.
-  std::size_t p = 0;
-  for (std::size_t k = 1; k < s.line.size(); ++k)
-    if (std::abs(s.line[k]) < std::abs(s.line[p])) p = k;
+  const std::size_t p = testing::nearest_pass(s);  // nodes exactly on its line
   std::mt19937 rng(25);
   std::uniform_real_distribution<double> along(-0.08, 0.08), unit(0.0, 1.0);
   int windows = 0, missed = 0;

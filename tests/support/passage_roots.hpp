@@ -1,8 +1,10 @@
-// What the tests of tooth_passage's pieces (land_test, exact_window_test) share: the paper's
-// scene on the convex arc at lambda 0, prepared, and a window's crossings found with no bound and
-// no rule, by sampling a tooth's phase and bisecting each sign change with probes.
+// What the tests of tooth_passage's pieces (land_test, exact_window_test, line_rates_test) share:
+// the paper's scene at lambda 0 on a given workpiece, prepared; the pass whose line is nearest the
+// patch's middle; and a window's crossings found with no bound and no rule, by sampling a tooth's
+// phase and bisecting each sign change with probes.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -13,16 +15,29 @@
 
 namespace testing {
 
-// The paper's scene on the convex arc (r 50) at lambda 0, 0.2 mm square at 10 um, with `extra`
-// (TOML tables) appended and `overrides` ("table.key=value") applied.
-inline topomill::Prepared paper_arc(const std::string& extra = "",
-                                    const std::vector<std::string>& overrides = {}) {
+// The paper's scene on `workpiece` (its [workpiece] table's keys) at lambda 0, 0.2 mm square at
+// 10 um, with `extra` (TOML tables) appended and `overrides` ("table.key=value") applied.
+inline topomill::Prepared paper_patch(const std::string& workpiece, const std::string& extra = "",
+                                      const std::vector<std::string>& overrides = {}) {
   auto doc = topomill::SceneDocument::parse_string(
-      paper_scene("plugin = 'convex_arc'\nradius = 50.0", 0.0, 0.2, 0.2, 0.01) + extra,
-      "passage.toml");
+      paper_scene(workpiece, 0.0, 0.2, 0.2, 0.01) + extra, "passage.toml");
   for (const auto& o : overrides) doc.apply_override(o);
   topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
   return topomill::prepare(doc.resolve(catalog), catalog);
+}
+
+// The same on the convex arc (r 50).
+inline topomill::Prepared paper_arc(const std::string& extra = "",
+                                    const std::vector<std::string>& overrides = {}) {
+  return paper_patch("plugin = 'convex_arc'\nradius = 50.0", extra, overrides);
+}
+
+// The pass whose line is nearest the patch's middle (the line at 0).
+inline std::size_t nearest_pass(const topomill::plugins::PassageSetup& s) {
+  std::size_t p = 0;
+  for (std::size_t k = 1; k < s.line.size(); ++k)
+    if (std::abs(s.line[k]) < std::abs(s.line[p])) p = k;
+  return p;
 }
 
 // Tooth `tooth`'s crossings in [a, b]: the phase sampled every `step`, each sign change (not a
