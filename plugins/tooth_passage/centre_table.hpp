@@ -139,6 +139,22 @@ class CentreTable {
     const double s = u - k;
     return (c[1] + s * (2 * c[2] + 3 * s * c[3])) * inv_dt_;
   }
+  // The nominal centre, its velocity and its acceleration at t, from the cubic that holds t;
+  // false beyond the table's cubics (the direct zone reads only the table: lined_zone.cpp).
+  bool nominal_jet(double t, Vec3& c, Vec3& v, Vec3& a) const {
+    const double u = (t - t0_) * inv_dt_;
+    const double k = std::floor(u);
+    if (!(k >= 1 && k + 2 < static_cast<double>(knots_.size()))) return false;
+    const Cubic& q = cubic_[static_cast<std::size_t>(k)];
+    const double s = u - k;
+    c = q[0] + s * (q[1] + s * (q[2] + s * q[3]));
+    v = (q[1] + s * (2 * q[2] + 3 * s * q[3])) * inv_dt_;
+    a = (2 * q[2] + 6 * s * q[3]) * (inv_dt_ * inv_dt_);
+    return true;
+  }
+  // An upper bound of the nominal centre's jerk in plan (mm/s^3): a cubic's third derivative is
+  // one number per piece, so this is the largest, exact but for a margin of round-off.
+  double jerk_xy() const { return jerk_xy_; }
   // An upper bound of the nominal centre's acceleration in plan (mm/s^2): the cubics' second
   // derivatives at their ends (where a cubic's, linear, is largest), with a margin. The
   // correction adds none within its linear pieces.
@@ -316,6 +332,10 @@ class CentreTable {
         accel_ = std::max(accel_, d2.norm() * inv_dt_ * inv_dt_);
       }
     accel_xy_ = 1.25 * accel_xy_ + 1e-9, accel_ = 1.25 * accel_ + 1e-9;
+    jerk_xy_ = 0;
+    for (std::size_t i = 1; i + 2 < n; ++i)
+      jerk_xy_ = std::max(jerk_xy_, 6 * std::hypot(cubic_[i][3].x(), cubic_[i][3].y()));
+    jerk_xy_ = 1.01 * jerk_xy_ * inv_dt_ * inv_dt_ * inv_dt_ + 1e-9;
   }
   double max_midpoint_error() const {
     double worst = 0;
@@ -344,7 +364,7 @@ class CentreTable {
   const ToolPath::Correction* correction_;
   bool spindle_axis_;
   Stretch stretch_;
-  double t0_ = 0, inv_dt_ = 1, accel_xy_ = 0, accel_ = 0;
+  double t0_ = 0, inv_dt_ = 1, accel_xy_ = 0, accel_ = 0, jerk_xy_ = 0;
   std::vector<Vec3> knots_;
   using Cubic = std::array<Vec3, 4>;  // coefficients of s^0 .. s^3
   std::vector<Cubic> cubic_;

@@ -32,29 +32,34 @@ class LagShape {
     double k1;  // largest |dPsi / d ln rho|
     double k2;  // largest |d^2 Psi / d (ln rho)^2|
     bool kink;  // the range holds the tip radius, where a held lag makes the phase's rate jump
+    double k3 = INFINITY;  // largest |d^3 Psi / d (ln rho)^3| (lined_zone.cpp's certificate)
   };
 
   explicit LagShape(const ToolGeometry& tool)
       : R_(tool.radius()), tip_(tool.radius() * std::sin(tool.min_polar_angle())) {
     const double width = R_ / kBins;
-    k1_.resize(kBins), k2_.resize(kBins);
+    k1_.resize(kBins), k2_.resize(kBins), k3_.resize(kBins);
     turned_.assign(kBins + 1, 0.0);
     for (std::size_t b = 0; b < kBins; ++b) {
       const double start = static_cast<double>(b) * width;
       const double l0 = lag(tool, start), lm = lag(tool, start + 0.5 * width),
                    l1 = lag(tool, start + width);
       turned_[b + 1] = turned_[b] + 1.1 * (std::abs(lm - l0) + std::abs(l1 - lm));
-      double m1 = 0, m2 = 0;
+      double m1 = 0, m2 = 0, m3 = 0;
       for (double f : {0.0, 0.5, 1.0}) {
-        const double rho = (static_cast<double>(b) + f) * width;
-        m1 = std::max(m1, std::abs(slope(tool, rho)));
-        // Central difference in ln(rho), a thousandth either side.
+        const double rho = (static_cast<double>(b) + f) * width, here = slope(tool, rho);
+        m1 = std::max(m1, std::abs(here));
+        // Central differences in ln(rho), a thousandth either side (the third derivative's
+        // round-off is a few ulps of the slope over 1e-6: 1e-9 for the built-in edges).
         const double up = slope(tool, rho * 1.001), down = slope(tool, rho / 1.001);
-        m2 = std::max(m2, std::abs(up - down) / (2 * std::log(1.001)));
+        const double h = std::log(1.001);
+        m2 = std::max(m2, std::abs(up - down) / (2 * h));
+        m3 = std::max(m3, std::abs(up - 2 * here + down) / (h * h));
       }
       // Then the largest up to this bin, from the axis out (over()).
       k1_[b] = std::max(1.1 * m1, b ? k1_[b - 1] : 0.0);
       k2_[b] = std::max(1.1 * m2, b ? k2_[b - 1] : 0.0);
+      k3_[b] = std::max(1.1 * m3, b ? k3_[b - 1] : 0.0);
     }
   }
 
@@ -85,7 +90,7 @@ class LagShape {
     const bool kink = tip_ > 0 && lo <= tip_ && tip_ <= hi;
     if (hi >= R_) return {INFINITY, INFINITY, kink};  // the rim: no bound
     const std::size_t b = bin(hi);
-    return {k1_[b], k2_[b], kink};
+    return {k1_[b], k2_[b], kink, k3_[b]};
   }
   // The largest |dPsi / d ln rho| from the axis out to rho.
   double slope_to(double rho) const { return over(0.0, rho).k1; }
@@ -115,8 +120,9 @@ class LagShape {
   }
 
   double R_, tip_;
-  std::vector<double> k1_, k2_;  // k1_[b]: the largest slope over bins 0 to b; k2_ the bend's
-  std::vector<double> turned_;   // turned_[b]: the lag's variation summed over bins below b
+  // k1_[b]: the largest slope over bins 0 to b; k2_ its first derivative's, k3_ its second's.
+  std::vector<double> k1_, k2_, k3_;
+  std::vector<double> turned_;  // turned_[b]: the lag's variation summed over bins below b
 };
 
 }  // namespace topomill::plugins

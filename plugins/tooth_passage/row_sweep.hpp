@@ -152,6 +152,7 @@ class RowSweep {
   Root fallback_root_{}, win_fallback_root_{};
   std::vector<PassageGeometry::Crossing> roots_;
   std::vector<PassageGeometry::Crossing> zone_roots_;  // walk: the zone's exact crossings
+  std::vector<PassageGeometry::Hint> hints_;           // walk: where the last node's crossings lead
   bool exact_used_ = false, fallback_used_ = false;    // the route of the node in hand
 };
 

@@ -22,9 +22,7 @@ TEST_CASE("an exact window finds a crossing where the phase turns at exactly its
   const topomill::Prepared m =
       testing::paper_arc("", {"tool.plugin=ball_end_constant_lead", "tool.helix_angle=0",
                               "cutting.depth_of_cut=0.02", "cutting.spindle_direction=ccw"});
-  topomill::EvaluationRequest rq;
-  rq.tool = m.tool.get(), rq.path = m.layout.path.get(), rq.kappa = m.layout.kappa;
-  const PassageSetup s(rq, 0.1, 12);
+  const PassageSetup s = testing::passage_setup(m);
   REQUIRE(s.parallel);
   const std::size_t p = testing::nearest_pass(s);  // nodes exactly on its line
   std::mt19937 rng(25);

@@ -20,34 +20,11 @@ using topomill::plugins::PassageGeometry;
 using topomill::plugins::PassageSetup;
 using topomill::plugins::wrap;
 
-namespace {
-
-struct Case {
-  const char* name;
-  std::string workpiece;
-  std::vector<std::string> overrides;
-};
-
-}  // namespace
-
 TEST_CASE("the side of a pass's line bounds the phase's rate", "[tooth_passage][near-axis]") {
-  const Case c =
-      GENERATE(Case{"convex arc, loxodrome 30, cw", "plugin = 'convex_arc'\nradius = 50.0", {}},
-               Case{"convex arc, loxodrome 30, ccw",
-                    "plugin = 'convex_arc'\nradius = 50.0",
-                    {"cutting.spindle_direction=ccw"}},
-               Case{"flat, constant lead 0, ccw",
-                    "plugin = 'inclined_plane'",
-                    {"tool.plugin=ball_end_constant_lead", "tool.helix_angle=0",
-                     "cutting.spindle_direction=ccw"}},
-               Case{"flat, constant lead 30, cw",
-                    "plugin = 'inclined_plane'",
-                    {"tool.plugin=ball_end_constant_lead", "tool.helix_angle=30"}});
+  const testing::LineCase c = GENERATE(from_range(testing::line_cases()));
   INFO(c.name);
   const topomill::Prepared m = testing::paper_patch(c.workpiece, "", c.overrides);
-  topomill::EvaluationRequest rq;
-  rq.tool = m.tool.get(), rq.path = m.layout.path.get(), rq.kappa = m.layout.kappa;
-  const PassageSetup s(rq, 0.1, 12);
+  const PassageSetup s = testing::passage_setup(m);
   REQUIRE(s.parallel);
   const std::size_t middle = testing::nearest_pass(s);  // and the next pass
   REQUIRE(middle + 1 < s.line.size());

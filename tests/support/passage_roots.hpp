@@ -1,7 +1,8 @@
-// What the tests of tooth_passage's pieces (land_test, exact_window_test, line_rates_test) share:
-// the paper's scene at lambda 0 on a given workpiece, prepared; the pass whose line is nearest the
-// patch's middle; and a window's crossings found with no bound and no rule, by sampling a tooth's
-// phase and bisecting each sign change with probes.
+// What the tests of tooth_passage's pieces (land_test, exact_window_test, line_rates_test,
+// lined_zone_test) share: the paper's scene at lambda 0 on a given workpiece, prepared, and its
+// PassageSetup; the scenes about a pass's line; the pass whose line is nearest the patch's middle;
+// and a window's crossings found with no bound and no rule, by sampling a tooth's phase and
+// bisecting each sign change with probes.
 #pragma once
 
 #include <cmath>
@@ -30,6 +31,36 @@ inline topomill::Prepared paper_patch(const std::string& workpiece, const std::s
 inline topomill::Prepared paper_arc(const std::string& extra = "",
                                     const std::vector<std::string>& overrides = {}) {
   return paper_patch("plugin = 'convex_arc'\nradius = 50.0", extra, overrides);
+}
+
+// tooth_passage's setup of a prepared scene, as the evaluator builds it (margin 0.1, 12 steps).
+inline topomill::plugins::PassageSetup passage_setup(const topomill::Prepared& m) {
+  topomill::EvaluationRequest rq;
+  rq.tool = m.tool.get(), rq.path = m.layout.path.get(), rq.kappa = m.layout.kappa;
+  return topomill::plugins::PassageSetup(rq, 0.1, 12);
+}
+
+// A scene of the tests about a pass's line (line_rates_test, lined_zone_test): paper_patch's
+// workpiece and overrides.
+struct LineCase {
+  const char* name;
+  std::string workpiece;
+  std::vector<std::string> overrides;
+};
+// The four they share: the paper's arc (loxodrome 30, both spindle directions) and a flat plate
+// (constant lead 0 and 30 deg).
+inline std::vector<LineCase> line_cases() {
+  const std::string arc = "plugin = 'convex_arc'\nradius = 50.0",
+                    flat = "plugin = 'inclined_plane'";
+  return {{"convex arc, loxodrome 30, cw", arc, {}},
+          {"convex arc, loxodrome 30, ccw", arc, {"cutting.spindle_direction=ccw"}},
+          {"flat, constant lead 0, ccw",
+           flat,
+           {"tool.plugin=ball_end_constant_lead", "tool.helix_angle=0",
+            "cutting.spindle_direction=ccw"}},
+          {"flat, constant lead 30, cw",
+           flat,
+           {"tool.plugin=ball_end_constant_lead", "tool.helix_angle=30"}}};
 }
 
 // The pass whose line is nearest the patch's middle (the line at 0).
