@@ -32,7 +32,6 @@ class LagShape {
     double k1;  // largest |dPsi / d ln rho|
     double k2;  // largest |d^2 Psi / d (ln rho)^2|
     bool kink;  // the range holds the tip radius, where a held lag makes the phase's rate jump
-    double k3 = INFINITY;  // largest |d^3 Psi / d (ln rho)^3| (lined_zone.cpp's certificate)
   };
 
   explicit LagShape(const ToolGeometry& tool)
@@ -90,8 +89,11 @@ class LagShape {
     const bool kink = tip_ > 0 && lo <= tip_ && tip_ <= hi;
     if (hi >= R_) return {INFINITY, INFINITY, kink};  // the rim: no bound
     const std::size_t b = bin(hi);
-    return {k1_[b], k2_[b], kink, k3_[b]};
+    return {k1_[b], k2_[b], kink};
   }
+  // The largest |d^3 Psi / d (ln rho)^3| from the axis out to hi (lined_zone.cpp's proof; kept
+  // out of Bound, which the spans read at every piece), +inf at the rim.
+  double bend_rate_to(double hi) const { return hi < R_ ? k3_[bin(hi)] : INFINITY; }
   // The largest |dPsi / d ln rho| from the axis out to rho.
   double slope_to(double rho) const { return over(0.0, rho).k1; }
 

@@ -51,10 +51,11 @@ double PassageGeometry::lined_convexity(double rho_hi) const {
   const PassageSetup::PlanLine& line = s_.plan_line[win_];
   const double w = std::abs(s_.omega), rho_lo = line_gap_;
   const LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);
-  if (k.kink || !std::isfinite(k.k3)) return -INFINITY;
+  const double k3 = s_.lag_shape.bend_rate_to(rho_hi);
+  if (k.kink || !std::isfinite(k3)) return -INFINITY;
   const double V = line.speed_hi, A = table_.accel_xy(), J = table_.jerk_xy();
   return 2 * w * line.along_lo * line.along_lo - 2 * w * rho_hi * A -
-         (k.k3 + 5 * k.k2) * V * V * V / rho_lo - 3 * k.k2 * V * A - (1 + 3 * k.k1) * V * A -
+         (k3 + 5 * k.k2) * V * V * V / rho_lo - 3 * k.k2 * V * A - (1 + 3 * k.k1) * V * A -
          (1 + k.k1) * rho_hi * J;
 }
 

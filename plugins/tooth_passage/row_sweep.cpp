@@ -284,11 +284,18 @@ double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, dou
     roots_.clear();
     const double a = std::max(lo, t_lo), b = std::min(hi, t_hi);
     if (tooth < 0) edge_probe_at[0] = a, edge_probe_at[1] = b;
-    hints_.clear();
-    for (int j = std::max(tooth, 0); j < (tooth < 0 ? s_.teeth : tooth + 1); ++j)
-      for (const Root& r : st.roots[static_cast<std::size_t>(j)]) hints_.push_back({j, r.ahead()});
-    if (!geo.crossings_lined(tooth, a, b, limit, roots_, tooth < 0 ? edge_probe : nullptr, &hints_))
-      geo.crossings_in(tooth, a, b, limit, roots_, tooth < 0 ? edge_probe : nullptr);
+    // Directly where the window keeps to its line (its solves started from the last node's
+    // roots), else by halving.
+    bool direct = false;
+    if (geo.lined()) {
+      hints_.clear();
+      for (int j = std::max(tooth, 0); j < (tooth < 0 ? s_.teeth : tooth + 1); ++j)
+        for (const Root& r : st.roots[static_cast<std::size_t>(j)])
+          hints_.push_back({j, r.ahead()});
+      direct = geo.crossings_lined(tooth, a, b, limit, roots_, tooth < 0 ? edge_probe : nullptr,
+                                   &hints_);
+    }
+    if (!direct) geo.crossings_in(tooth, a, b, limit, roots_, tooth < 0 ? edge_probe : nullptr);
     for (const auto& r : roots_) {
       take(r.tooth, r.t, &r.q);
       if (tooth < 0)
