@@ -8,7 +8,8 @@
 // rho keeps, per bin, their largest magnitudes at the bin's ends and middle, widened by 10 %,
 // and the largest of those from the axis out to the bin (over()). That bounds them wherever they
 // are monotone within a bin (both built-in edges everywhere; a bin is R / 4096 wide); the
-// brute-force scan (node_walk.hpp) and the tests check the rest.
+// brute-force scan (node_walk.hpp) and the tests check the rest. The third derivative Psi_uuu is
+// kept the same way for the direct zone's convexity bound (lined_zone.cpp, bend_rate_to).
 //
 // At the rim (rho -> R, the ball's equator) the slope has no bound: rho = R sin(alpha) stops
 // growing while the lag still turns with alpha. The lag itself stays finite there (a loxodrome's

@@ -567,22 +567,23 @@ class PassageGeometry {
   void crossings_in(int tooth, double a, double b, double& below, std::vector<Crossing>& roots,
                     Probe* ends = nullptr) const;
   // The same directly, where the window's centre keeps to its line (lined()): the phase's turning
-  // points solved as the zeros of a function proven convex, then each tooth's levels between
-  // (lined_zone.cpp). False, with nothing found and `below` untouched, where that proof fails
-  // (the tip radius or the rim within reach, the node next to the line) or the zeros do not
-  // settle: crossings_in then, which stays the reference (tests/plugins/lined_zone_test.cpp).
-  // Where lined(), a lower bound of K'' (K = rho^2 G') in the spindle's sense while the node is
-  // at most rho_hi from the axis: crossings_lined's proof that K has at most two zeros where it
-  // is positive. -inf where none is known (the tip radius or the rim within reach).
-  double lined_convexity(double rho_hi) const;
-  // `hints`, where given: where crossings are expected (the row sweep's last node's, carried on),
-  // each solve starting from the one of its tooth nearest its place.
+  // points solved as the zeros of K = rho^2 G', proven convex (lined_convexity), then each
+  // tooth's levels between (lined_zone.cpp). False, with nothing found and `below` untouched,
+  // where that proof fails (the tip radius or the rim within reach, the node next to the line)
+  // or the zeros do not settle: crossings_in then, which stays the reference
+  // (tests/plugins/lined_zone_test.cpp). `hints`, where given: where crossings are expected
+  // (the row sweep's last node's, carried on), each solve starting from the one of its tooth
+  // nearest its place.
   struct Hint {
     int tooth;
     double t;
   };
   bool crossings_lined(int tooth, double a, double b, double& below, std::vector<Crossing>& roots,
                        Probe* ends = nullptr, const std::vector<Hint>* hints = nullptr) const;
+  // Where lined(), a lower bound of K'' in the spindle's sense while the node is at most rho_hi
+  // from the axis: where it is positive, K has at most two zeros. -inf where none is known (the
+  // tip radius or the rim within reach).
+  double lined_convexity(double rho_hi) const;
   // Tooth 0's probe q as tooth j's (the same but for the phase, turned by the tooth's angle).
   Probe turned_to(const Probe& q, int j) const {
     Probe out = q;

@@ -244,11 +244,12 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
 // node's), as long as the phase is proven monotone between them (PassageGeometry::next_crossing).
 // Where it is not (the axis passes close to the node: its azimuth turns faster than the spindle
 // and a passage may cross it three times), that revolution is solved exactly in place
-// (crossings_in) and the walk goes on from its far edge. The time around t_b that cannot be
-// followed (the axis's closest approach) is solved first, for all teeth at once (the teeth's
-// phases differ by a constant: one subdivision serves them all): a zone reaching out by eighths
-// of a revolution until the phase beyond each edge is proven monotone. The teeth are followed
-// from its edges, and its crossings kept as roots for the next node, as the walk's own are.
+// (crossings_lined where the window keeps to its line, else crossings_in) and the walk goes on
+// from its far edge. The time around t_b that cannot be followed (the axis's closest approach)
+// is solved first, for all teeth at once (the teeth's phases differ by a constant: one solve
+// serves them all): a zone reaching out by eighths of a revolution until the phase beyond each
+// edge is proven monotone. The teeth are followed from its edges, and its crossings kept as
+// roots for the next node, as the walk's own are.
 double RowSweep::walk(const PassageGeometry& geo, PassState& st, double t_b, double best_node,
                       NodeCounts& counts) {
   const double rev = s_.rev, t_lo = geo.t_lo(), t_hi = geo.t_hi(), w = std::abs(s_.omega);

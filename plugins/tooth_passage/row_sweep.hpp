@@ -9,9 +9,10 @@
 // is not solved again (walk_corrected); a pass walked before is revisited in place, its failing
 // passages solved again (revisit). A step from one passage to the next is taken only where the
 // phase bounds prove it the next (PassageGeometry::next_crossing); on an ideal path a revolution
-// that cannot be proven is solved exactly in place (crossings_in: near the tool's axis). On a
-// corrected path anything irregular (no such proof, a crossing that does not converge) is handed to
-// the reference walk for that node and pass, so the result is the reference's to round-off.
+// that cannot be proven is solved exactly in place (crossings_lined or crossings_in: near the
+// tool's axis). On a corrected path anything irregular (no such proof, a crossing that does not
+// converge) is handed to the reference walk for that node and pass, so the result is the
+// reference's to round-off.
 #pragma once
 
 #include <algorithm>
