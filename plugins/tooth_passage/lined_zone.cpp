@@ -108,7 +108,7 @@ bool PassageGeometry::crossings_lined(int only, double a, double b, double& belo
   // parabola that bounds F from below: F(x) >= F(t) + F'(t) (x - t) + m (x - t)^2 / 2, with F'(t)
   // taken at its steepest towards the zero. A parabola of no zero before the far end proves F
   // positive on the rest of [a, b]: no zero at all.
-  // A step ends within F / |F'| before its zero; over that the phase turns by at most about
+  // A step ends about F / |F'| before its zero; over that the phase turns by at most about
   // F^2 / (|F'| rho^2) past its turning point, and under 1e-13 rad (the phase's round-off) it is
   // taken as the zero.
   auto settled = [](double f, double steep, double r2) {

@@ -1,16 +1,16 @@
 // tooth_passage's direct zone (PassageGeometry::crossings_lined, lined_zone.cpp): where the
 // window's centre keeps to its line, the phase's turning points are solved as the zeros of a
-// convex function and each tooth's levels between them. Its promise is crossings_in's: of the
-// crossings in [a, b], every one that can lie below `below` that matters, i.e. the lowest under
+// convex function and each tooth's levels between them. Its promise is crossings_in's: the
+// crossings in [a, b] that can lie below `below` (the rest may be left out), so the lowest under
 // the ball below `below` is found, and everything returned is a crossing. Checked here against
 // crossings found with no bound and no rule (a tooth's phase sampled every 0.5 us, each sign
 // change bisected: tests/support/passage_roots.hpp), for nodes 1 um to 50 um either side of two
 // pass lines, windows of an eighth to a whole revolution at and around the axis's closest
-// approach, every `below` that changes the answer (each sampled crossing's height and just above
-// it), on the paper's arc (loxodrome 30, both spindle directions, 2 and 4 teeth) and a flat
-// plate (constant lead 0 and 30). It must also be of use: it applies to every window of every
-// node from 2 um out, and the windows include turn-backs (a tooth crossing more often than the
-// spindle alone would make it).
+// approach, every `below` that changes the answer (none, and a pm above and below each sampled
+// crossing's height), on the paper's arc (loxodrome 30, both spindle directions, 2 and 4 teeth)
+// and a flat plate (constant lead 0 and 30). It must also be of use: it applies to every window
+// of every node from 2 um out, and the windows include turn-backs (a tooth crossing more often
+// than the spindle alone would make it).
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
