@@ -139,11 +139,12 @@ TEST_CASE("the direct zone finds the lowest crossing the halving finds",
 // The proof behind it (PassageGeometry::lined_convexity): K = rho^2 G' bends in the spindle's
 // sense by at least m wherever the node is within rho_hi of the axis. Sampled: G' by the central
 // difference of a probe's phase (10 ns either side: the definition, no rate formula), K'' by the
-// second difference of K every 100 us, at the same nodes, over a revolution around the closest
-// approach, allowing 0.1 % of m for their round-off (on the flat plate with no lag, where K'' is
-// 2 |omega| v^2 and m the same but for the table's margins, they agree to 1e-5; at a 20 us step
-// to 2.3e-4). m must also be of use: positive from 1 um out and within 10 % of the least K''
-// sampled (m falls short of K'' only by the lag's bends and the arc's acceleration).
+// second difference of K every 100 us, at 8 nodes 1 um to 50 um either side of the line, over a
+// revolution around the closest approach, allowing 0.1 % of m for their round-off (on the flat
+// plate with no lag, where K'' is 2 |omega| v^2 and m the same but for the table's margins, they
+// agree to 1e-5; at a 20 us step to 2.3e-4). m must also be of use: positive from 1 um out and
+// within 10 % of the least K'' sampled (m falls short of K'' only by the lag's bends and the arc's
+// acceleration).
 TEST_CASE("the direct zone's convexity bound holds along the pass", "[tooth_passage][near-axis]") {
   const testing::LineCase c = GENERATE(from_range(testing::line_cases()));
   INFO(c.name);
