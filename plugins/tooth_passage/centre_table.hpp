@@ -110,12 +110,10 @@ class CentreTable {
   Vec3 correction(double t) const { return correction_->at(t); }
 
   Vec3 nominal(double t) const {
-    const double u = (t - t0_) * inv_dt_;
-    const double k = std::floor(u);
-    if (!(k >= 1 && k + 2 < static_cast<double>(knots_.size()))) return path_centre(t);
-    const Cubic& c = cubic_[static_cast<std::size_t>(k)];
-    const double s = u - k;
-    return c[0] + s * (c[1] + s * (c[2] + s * c[3]));
+    double s;
+    const Cubic* c = piece(t, s);
+    if (!c) return path_centre(t);
+    return (*c)[0] + s * ((*c)[1] + s * ((*c)[2] + s * (*c)[3]));
   }
 
   // The correction's slope on its linear piece at t (at a knot, the piece that starts there).
@@ -129,24 +127,21 @@ class CentreTable {
   }
   // The nominal centre's velocity (mm/s): the cubic's derivative.
   Vec3 nominal_velocity(double t) const {
-    const double u = (t - t0_) * inv_dt_;
-    const double k = std::floor(u);
-    if (!(k >= 1 && k + 2 < static_cast<double>(knots_.size()))) {
+    double s;
+    const Cubic* c = piece(t, s);
+    if (!c) {
       const double h = 1e-6 / inv_dt_;  // beyond the table (never in practice): the path itself
       return (path_centre(t + h) - path_centre(t - h)) / (2 * h);
     }
-    const Cubic& c = cubic_[static_cast<std::size_t>(k)];
-    const double s = u - k;
-    return (c[1] + s * (2 * c[2] + 3 * s * c[3])) * inv_dt_;
+    return ((*c)[1] + s * (2 * (*c)[2] + 3 * s * (*c)[3])) * inv_dt_;
   }
   // The nominal centre, its velocity and its acceleration at t, from the cubic that holds t;
   // false beyond the table's cubics (the direct zone reads only the table: lined_zone.cpp).
   bool nominal_jet(double t, Vec3& c, Vec3& v, Vec3& a) const {
-    const double u = (t - t0_) * inv_dt_;
-    const double k = std::floor(u);
-    if (!(k >= 1 && k + 2 < static_cast<double>(knots_.size()))) return false;
-    const Cubic& q = cubic_[static_cast<std::size_t>(k)];
-    const double s = u - k;
+    double s;
+    const Cubic* p = piece(t, s);
+    if (!p) return false;
+    const Cubic& q = *p;
     c = q[0] + s * (q[1] + s * (q[2] + s * q[3]));
     v = (q[1] + s * (2 * q[2] + 3 * s * q[3])) * inv_dt_;
     a = (2 * q[2] + 6 * s * q[3]) * (inv_dt_ * inv_dt_);
@@ -368,6 +363,14 @@ class CentreTable {
   std::vector<Vec3> knots_;
   using Cubic = std::array<Vec3, 4>;  // coefficients of s^0 .. s^3
   std::vector<Cubic> cubic_;
+  // The cubic that holds t and t's place s in [0, 1) along it; null beyond the table's cubics.
+  const Cubic* piece(double t, double& s) const {
+    const double u = (t - t0_) * inv_dt_;
+    const double k = std::floor(u);
+    if (!(k >= 1 && k + 2 < static_cast<double>(knots_.size()))) return nullptr;
+    s = u - k;
+    return &cubic_[static_cast<std::size_t>(k)];
+  }
   std::shared_ptr<const CorrectionIndex> index_;
 };
 

@@ -47,13 +47,14 @@
 
 namespace topomill::plugins {
 
-double PassageGeometry::lined_convexity(double rho_hi) const {
+double PassageGeometry::lined_convexity(double rho_hi, double* k2) const {
   if (!lined() || !(rho_hi < 0.95 * s_.R)) return -INFINITY;
   const PassageSetup::PlanLine& line = s_.plan_line[win_];
   const double w = std::abs(s_.omega), rho_lo = line_gap_;
   const LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);
   const double k3 = s_.lag_shape.bend_rate_to(rho_hi);
   if (k.kink || !std::isfinite(k3)) return -INFINITY;
+  if (k2) *k2 = k.k2;
   const double V = line.speed_hi, A = table_.accel_xy(), J = table_.jerk_xy();
   return 2 * w * line.along_lo * line.along_lo - 2 * w * rho_hi * A -
          (k3 + 5 * k.k2) * V * V * V / rho_lo - 3 * k.k2 * V * A - (1 + 3 * k.k1) * V * A -
@@ -68,14 +69,14 @@ bool PassageGeometry::crossings_lined(int only, double a, double b, double& belo
   const double sense = s_.omega > 0 ? 1.0 : -1.0;
   const Probe pa = probe(0, a), pb = probe(0, b);
   if (!std::isfinite(pa.lag) || !std::isfinite(pb.lag)) return false;  // off the ball
-  // The node's distance from the axis over [a, b]: at least its distance from the line's strip;
-  // at most its distance across from the strip's far side together with the larger at the ends
-  // (the centre moves forwards along the line, so its offset along stays within the ends').
-  const double rho_lo = line_gap_;
+  // The node's distance from the axis over [a, b]: at least its distance from the line's strip
+  // (lined_convexity's rho_lo); at most its distance across from the strip's far side together with
+  // the larger at the ends (the centre moves forwards along the line, so its offset along stays
+  // within the ends').
   const double rho_hi = std::hypot(std::max(pa.rho, pb.rho), line_gap_ + 2 * line.off);
-  const double m = lined_convexity(rho_hi);
+  double k2 = 0;  // the lag's bend there, as m takes it
+  const double m = lined_convexity(rho_hi, &k2);
   if (!(m > 0)) return false;
-  const LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);  // (k2 finite: m is)
 
   // F = sign(omega) K at t, the range [lo, hi] of its slope, and the envelope's slope (ball
   // height over the node).
@@ -92,7 +93,7 @@ bool PassageGeometry::crossings_lined(int only, double a, double b, double& belo
     const double D = qx * v.x() + qy * v.y(), M = qx * v.y() - qy * v.x();
     const double dD = qx * acc.x() + qy * acc.y() - (v.x() * v.x() + v.y() * v.y());
     const double slope = sense * (-2 * s_.omega * D - psi * dD + (qx * acc.y() - qy * acc.x()));
-    const double bend = k.k2 * D * D / r2;  // |Psi_uu D^2 / rho^2|
+    const double bend = k2 * D * D / r2;  // |Psi_uu D^2 / rho^2|
     e = {t,
          sense * (s_.omega * r2 - psi * D + M),
          slope - bend,

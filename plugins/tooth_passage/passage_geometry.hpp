@@ -582,8 +582,8 @@ class PassageGeometry {
                        Probe* ends = nullptr, const std::vector<Hint>* hints = nullptr) const;
   // Where lined(), a lower bound of K'' in the spindle's sense while the node is at most rho_hi
   // from the axis: where it is positive, K has at most two zeros. -inf where none is known (the
-  // tip radius or the rim within reach).
-  double lined_convexity(double rho_hi) const;
+  // tip radius or the rim within reach). `k2`, where given, gets the lag's bend it took.
+  double lined_convexity(double rho_hi, double* k2 = nullptr) const;
   // Tooth 0's probe q as tooth j's (the same but for the phase, turned by the tooth's angle).
   Probe turned_to(const Probe& q, int j) const {
     Probe out = q;
