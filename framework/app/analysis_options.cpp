@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "interrupt.hpp"
+
 #include "metrology/gaussian_filter.hpp"
 #include "suggest.hpp"
 
@@ -91,9 +93,12 @@ void AnalysisOptions::check() {
 }
 
 Surface AnalysisOptions::process(Surface s) const {
+  throw_if_interrupted();
   s = remove_form(s, form);
+  throw_if_interrupted();
   if (lambda_s > 0) s = s_filter(s, lambda_s);
   if (lambda_c > 0) s = l_filter(s, lambda_c);
+  throw_if_interrupted();
   return s;
 }
 

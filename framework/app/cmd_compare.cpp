@@ -16,10 +16,17 @@ namespace topomill::cli {
 namespace fs = std::filesystem;
 
 namespace {
-// A run's output directory stands for its residual map, in the first format it wrote.
+// A run's output directory stands for its residual map, in the first format it wrote; only a
+// finished run's (sealed by its summary.json): a stopped or running one may hold a map of
+// another run, or pieces.
 std::string surface_file(const std::string& given) {
   std::error_code ec;
   if (!fs::is_directory(given, ec)) return given;
+  if (!fs::is_regular_file(fs::path(given) / "summary.json", ec))
+    throw InputError(SourceRef{given}, "",
+                     "the directory holds no summary.json, so no finished run (a run that was "
+                     "stopped, failed or is still writing leaves none): expected a finished run's "
+                     "output directory or a height-map file");
   for (const char* ext : {"x3p", "gsf", "sdf", "csv"}) {
     const fs::path p = fs::path(given) / (std::string("height_residual.") + ext);
     if (fs::is_regular_file(p, ec)) return p.string();

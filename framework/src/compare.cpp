@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "interrupt.hpp"
 #include "metrology/resample.hpp"
 #include "metrology/spectrum.hpp"
 #include "roughness.hpp"
@@ -11,6 +12,9 @@
 namespace topomill {
 
 namespace {
+// The largest |height| the registration's sums of squared heights over a map hold (mm).
+constexpr double kLargestHeight = 1e150;
+
 double wrap_deg(double d) {
   d = std::fmod(d, 180.0);
   return d < 0 ? d + 180 : d;
@@ -79,6 +83,15 @@ Comparison compare_surfaces(const Surface& sim_in, const Surface& meas_in,
   if (flat_s || flat_m)
     throw InputError(flat_s ? SourceRef{sim_in.source} : where, "",
                      "the map is flat after processing: expected a surface with relief");
+  // The registration correlates products of heights: beyond kLargestHeight they overflow (1e300
+  // mm was called "maps of different places").
+  for (const auto& [r, source] : {std::pair{&rs, &sim_in.source}, std::pair{&rm, &meas_in.source}})
+    if (!(top(*r) < kLargestHeight))
+      throw InputError(SourceRef{*source}, "",
+                       "heights reach " + format_number(top(*r)) + " mm, beyond " +
+                           format_number(kLargestHeight) +
+                           " mm, where the registration's products of heights overflow: expected "
+                           "the heights of a real surface (units that do not match?)");
   if (sq_s / sq_m > 100 || sq_m / sq_s > 100)
     throw InputError(where, "",
                      "Sq is " + format_number(sq_m * 1e3) + " um here and " +
@@ -86,8 +99,10 @@ Comparison compare_surfaces(const Surface& sim_in, const Surface& meas_in,
                          ": heights more than 100 times apart, units that do not match (a file "
                          "in um read as mm?); expected heights on one scale");
 
+  throw_if_interrupted();  // between the steps, each at most a few FFTs of the maps
   c.sim_lay = lay_of(c.sim);
   c.meas_lay = lay_of(c.meas);
+  throw_if_interrupted();
   RegistrationOptions ro = settings.registration;
   if (ro.rotation) {
     // The lays' difference, the nearest way round (a lay has no sense: 180 deg is the same).
@@ -96,6 +111,7 @@ Comparison compare_surfaces(const Surface& sim_in, const Surface& meas_in,
     ro.angle_guess = d * M_PI / 180;
   }
   c.registration = register_surfaces(c.sim, c.meas, ro);
+  throw_if_interrupted();
   c.aligned = align(c.meas, c.sim, c.registration);
   c.difference = c.aligned;
   c.sim_overlap = c.sim;
@@ -115,6 +131,7 @@ Comparison compare_surfaces(const Surface& sim_in, const Surface& meas_in,
     throw InputError(where, "",
                      "the registered maps share " + std::to_string(shared) +
                          " nodes: expected maps of the same area of the surface");
+  throw_if_interrupted();
   c.sim_parameters = compute_parameters(c.sim_overlap, settings.names, settings.parameters);
   c.meas_parameters = compute_parameters(c.aligned, settings.names, settings.parameters);
   return c;

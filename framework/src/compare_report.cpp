@@ -2,7 +2,10 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -89,9 +92,13 @@ CompareReport write_compare_report(const std::string& dir_given, const Compariso
                      "'" + dir +
                          "' exists and is not an earlier compare's output: expected a new "
                          "directory, or one holding compare.json");
-  const fs::path stage = fs::path(dir).string() + ".incomplete-" + std::to_string(::getpid());
-  fs::remove_all(stage, ec);
-  fs::create_directories(stage);
+  // Made anew under a name of its own, so that nothing planted beside --out stands in for it.
+  std::string stage_name = fs::path(dir).string() + ".incomplete-XXXXXX";
+  if (!mkdtemp(stage_name.data()))
+    throw InputError(SourceRef{"command line"}, "--out",
+                     "cannot write beside '" + dir + "': " + std::strerror(errno) +
+                         ": expected a directory you can write into");
+  const fs::path stage = stage_name;
   auto path = [&](const char* name) { return (stage / name).string(); };
   std::vector<std::string> files;
 
@@ -278,8 +285,14 @@ CompareReport write_compare_report(const std::string& dir_given, const Compariso
     write_atomically(path("compare.json"), [&](std::ostream& o) { o << rep.json; });
     write_atomically(path("compare.md"), [&](std::ostream& o) { o << rep.markdown; });
     // Into place: the earlier output (checked above to be a compare's) goes, the new one moves in.
-    if (fs::exists(dir, ec)) fs::remove_all(dir);
-    fs::rename(stage, dir);
+    try {
+      if (fs::exists(dir, ec)) fs::remove_all(dir);
+      fs::rename(stage, dir);
+    } catch (const fs::filesystem_error& e) {
+      throw InputError(SourceRef{"command line"}, "--out",
+                       "cannot put the report at '" + dir + "': " + e.code().message() +
+                           ": expected a directory you may replace or create");
+    }
   } catch (...) {
     fs::remove_all(stage, ec);
     throw;

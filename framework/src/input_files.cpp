@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <mutex>
 
+#include "io/read_file.hpp"
+
 namespace topomill {
 
 namespace {
@@ -21,6 +23,13 @@ std::vector<std::string>& files() {
 void record_input_file(const std::string& path) {
   std::lock_guard<std::mutex> hold(lock());
   if (std::find(files().begin(), files().end(), path) == files().end()) files().push_back(path);
+}
+
+std::string read_input_file(const std::string& path, std::uint64_t max_bytes,
+                            const std::string& what) {
+  std::string bytes = read_file_bounded(path, max_bytes, what);
+  record_input_file(path);
+  return bytes;
 }
 
 std::vector<std::string> recorded_input_files() {

@@ -21,6 +21,12 @@ Interrupted::Interrupted()
     : std::runtime_error("interrupted (" + signal_name(stop_signal()) +
                          "): the run stopped before writing its outputs") {}
 
+Interrupted::~Interrupted() = default;
+
+bool stop_requested() {
+  return g_stop.load();
+}
+
 void install_interrupt_handler() {
   struct sigaction sa {};
   sa.sa_handler = on_stop_signal;

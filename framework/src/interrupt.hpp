@@ -5,17 +5,11 @@
 #pragma once
 
 #include <atomic>
-#include <stdexcept>
 #include <string>
 
-namespace topomill {
+#include "topomill/interrupt.hpp"
 
-// Thrown at a check after a stop request; names the signal.
-class Interrupted : public std::runtime_error {
- public:
-  Interrupted();
-  explicit Interrupted(const std::string& what) : std::runtime_error(what) {}
-};
+namespace topomill {
 
 // Installs the handlers for SIGINT, SIGTERM and SIGHUP. Safe to call more than once.
 void install_interrupt_handler();
@@ -27,8 +21,5 @@ const std::atomic<bool>& stop_flag();
 int stop_signal();
 // "SIGINT", "SIGTERM", "SIGHUP".
 std::string signal_name(int signal);
-
-// Throws Interrupted if a stop was requested.
-void throw_if_interrupted();
 
 }  // namespace topomill

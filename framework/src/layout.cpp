@@ -7,13 +7,20 @@
 
 #include "catw.hpp"
 #include "interrupt.hpp"
+#include "resources.hpp"
 
 namespace topomill {
 
 namespace {
 constexpr double kDeg = M_PI / 180.0;
-constexpr double kMaxCells = 1e12;  // grid spacings along a side: far beyond any memory
-constexpr double kMaxPasses = 1e7;  // passes across the patch
+constexpr double kMaxCells = 1e12;         // grid spacings along a side: far beyond any memory
+constexpr double kMaxPasses = 1e7;         // passes across the patch
+constexpr double kMinFeedPerTooth = 1e-6;  // mm, as cutting.feed_per_tooth's least
+// A laid-out pass in memory: the model's PassLine and the core's ToolPath::Pass, with the
+// vectors' growth (measured: 420 bytes a pass at 1e6 passes, `topomill check` under
+// /usr/bin/time -f %M).
+constexpr double kLayoutBytesPerPass = 512;
+constexpr double kPassesBeyond = 3;  // a step-over beyond each side, and one rounded up
 
 std::string format_count(double n) {
   std::ostringstream os;
@@ -68,8 +75,17 @@ static void check_posture(const ToolPath& path, Layout& L, const SlotTable& slot
 
 // A pass of cutter-location data, checked point by point against what the core can follow: each
 // named by its file and line.
+// The feed rates cutter-location data may give, from the scene's feed per tooth fz at feed
+// speed vf: a tooth's feed from kMinFeedPerTooth (as cutting.feed_per_tooth: below it the spindle
+// angle's rounding moves the edge by nanometres, and a pass lasts for ever) to the ball's
+// diameter (beyond it each tooth leaves a dimple of its own, and 1e300 overflowed the times).
+struct FeedLimits {
+  double lo, hi;  // mm/s
+};
+
 template <class Defect>
-static ToolPath::Pass waypoint_pass(const PassLine& l, const Defect& defect) {
+static ToolPath::Pass waypoint_pass(const PassLine& l, const FeedLimits& feed,
+                                    const Defect& defect) {
   if (!std::isfinite(l.phase)) throw defect("laid out a pass whose phase is not finite");
   if (l.points.size() < 2) throw defect("laid out a pass of fewer than two points");
   if (l.posture.normal || l.posture.lead != 0 || l.posture.tilt != 0)
@@ -84,9 +100,12 @@ static ToolPath::Pass waypoint_pass(const PassLine& l, const Defect& defect) {
     if (!w.centre.allFinite() || !w.axis.allFinite() || !std::isfinite(w.speed))
       throw defect("read a point that is not finite");
     if (std::abs(w.axis.norm() - 1) > 1e-9) throw defect("read an axis that is not a unit vector");
-    if (k + 1 < l.points.size() && !(w.speed > 0))
+    if (k + 1 < l.points.size() && !(w.speed >= feed.lo && w.speed <= feed.hi))
       throw refuse("the feed to the next point is " + format_number(w.speed * 60) +
-                   " mm/min: expected more than 0");
+                   " mm/min: expected " + format_number(feed.lo * 60) + " to " +
+                   format_number(feed.hi * 60) +
+                   " mm/min (a feed per tooth from 1 nm to the ball's diameter at this spindle "
+                   "speed and number of teeth)");
     if (k + 1 < l.points.size() && w.centre == l.points[k + 1].at.centre)
       throw defect("laid out two equal points in a row (from lines " + std::to_string(c.line) +
                    " and " + std::to_string(l.points[k + 1].line) + " of " + l.source + ")");
@@ -97,9 +116,26 @@ static ToolPath::Pass waypoint_pass(const PassLine& l, const Defect& defect) {
   return p;
 }
 
+// The patch in plan, grown by the ball's radius: the points of cutter-location data that can
+// cut it.
+struct Reach {
+  double x_lo, x_hi, y_lo, y_hi;
+  bool holds(const Vec3& c) const {
+    return c.x() > x_lo && c.x() < x_hi && c.y() > y_lo && c.y() < y_hi;
+  }
+};
+
 // Every point of cutter-location data: its contact within the ball's lower half (about the
-// given axis, or the vertical), named by file and line; and the steepest contact (lambda_max).
-static void check_waypoints(const ToolPath& path, const std::vector<PassLine>& lines, Layout& L) {
+// given axis, or the vertical), named by file and line, for the scene's depth or the point's own
+// if deeper (a centre below the surface puts the ball's equator in the material); the steepest
+// contact (lambda_max); and some point near the patch within the ball's reach of the surface (a
+// path that never touches the part left a flat map: data in inches read as mm, tips read as
+// centres, passes above the part).
+static void check_waypoints(const ToolPath& path, const std::vector<PassLine>& lines,
+                            const Reach& reach, double R, Layout& L) {
+  const SurfaceShape& surface = path.surface();
+  double lowest = INFINITY;  // the least distance of a centre near the patch from the surface
+  SourceRef lowest_at;
   for (std::size_t p = 0; p < path.passes(); ++p) {
     const ToolPath::Pass& pass = path.pass(p);
     if (pass.waypoints.empty()) continue;
@@ -108,25 +144,47 @@ static void check_waypoints(const ToolPath& path, const std::vector<PassLine>& l
       const double t = path.waypoint_time(p, k);
       const double y = path.surface_y(p, t), angle = path.contact_angle(p, t);
       const SourceRef at{lines[p].source, points[k].line, 1};
-      const SurfaceShape& surface = path.surface();
+      const Vec3& centre = pass.waypoints[k].centre;
       // (The foot point is searched on the surface: off it, the search ends at an end.)
       const double edge = 1e-9 * (1 + std::abs(y));
       if (!(y > surface.y_min() + edge && y < surface.y_max() - edge) || !std::isfinite(angle))
         throw InputError(at, "path.file",
-                         "the ball centre at y = " + format_number(pass.waypoints[k].centre.y()) +
+                         "the ball centre at y = " + format_number(centre.y()) +
                              " mm has no point of the workpiece surface beneath it (y from " +
                              format_number(surface.y_min()) + " to " +
                              format_number(surface.y_max()) + " mm): expected points over it");
+      const double above = surface.normal_residual(centre.y(), centre.z(), 0.0);
+      if (reach.holds(centre) && above < lowest) lowest = above, lowest_at = at;
+      if (above <= 0)
+        throw InputError(at, "path.file",
+                         "the ball centre is " + format_number(-above) +
+                             " mm below the workpiece surface (along its normal): the ball's "
+                             "equator and the shank above it would cut; expected centres above "
+                             "the surface, less than the ball radius " +
+                             format_number(R) + " mm (tool tips read as centres? see path.point)");
+      // The half-angle of the ball's cap in the material at this point's own depth.
+      const double own = above < R ? std::acos(above / R) : 0.0;
+      const double kappa = std::max(L.kappa, own);
       L.lambda_max = std::max(L.lambda_max, angle);
-      if (angle + L.kappa < M_PI / 2) continue;
+      if (angle + kappa < M_PI / 2) continue;
       throw InputError(at, "path.file",
                        "the tool's axis is " + format_number(angle / kDeg) +
                            " deg from the surface normal here, and with the cut's half-width of " +
-                           format_number(L.kappa / kDeg) +
+                           format_number(kappa / kDeg) +
                            " deg the ball's equator would cut (the shank above it would rub): "
                            "expected an axis nearer the normal");
     }
   }
+  if (std::isfinite(lowest) && lowest >= R)
+    throw InputError(lowest_at, "path.file",
+                     "the tool never touches the workpiece near the patch: the lowest ball "
+                     "centre there (this line) is " +
+                         format_number(lowest) + " mm from the surface along its normal, " +
+                         format_number(lowest - R) + " mm more than the ball radius " +
+                         format_number(R) +
+                         " mm, so the map would be the uncut surface; expected centres less than "
+                         "a ball radius from the surface (data in inches read as mm? tool tips "
+                         "read as centres, or centres as tips: see path.point?)");
 }
 
 Layout make_layout(const Scene& scene, const ToolGeometry& tool,
@@ -273,6 +331,18 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
                          format_number(ae) +
                          " mm: expected fewer than 1e7 (shrink region.size or raise "
                          "cutting.stepover)");
+  // What laying the passes out holds, estimated before any pass is laid out (a step-over of
+  // 21 nm on a 0.1 mm patch laid out 4.8e6 passes, 2.1 GB and tens of seconds, before the
+  // memory check after the layout refused them).
+  const double layout_bytes = (steps + kPassesBeyond) * kLayoutBytesPerPass;
+  const double available = static_cast<double>(available_memory());
+  if (layout_bytes > 0.9 * available)
+    throw InputError(cut.where("stepover"), "cutting.stepover",
+                     "the patch would need about " + format_count(steps) +
+                         " passes at a step-over of " + format_number(ae) +
+                         " mm, whose layout alone needs about " + format_bytes(layout_bytes) +
+                         ", and " + format_bytes(available) +
+                         " are available: raise cutting.stepover or shrink region.size");
   PathRequest rq;
   rq.surface = surface.get();
   rq.stepover = ae, rq.feed_speed = vf, rq.run = run;
@@ -300,12 +370,13 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   // there), and the path is only defined over the surface: that reach must lie on it too. (With
   // 49 teeth on the paper's arc it did not: the centre was NaN there and tooth_passage's table
   // halved its step until memory ran out.)
+  const FeedLimits feed_limits{vf * kMinFeedPerTooth / fz, vf * 2 * R / fz};
   std::vector<ToolPath::Pass> passes;
   double y_first = INFINITY, y_last = -INFINITY, reach = 0;
   bool near_patch = false;  // some waypoint segment's box comes within R of the patch
   for (const PassLine& l : lines) {
     if (!l.points.empty()) {
-      passes.push_back(waypoint_pass(l, defect));
+      passes.push_back(waypoint_pass(l, feed_limits, defect));
       for (std::size_t k = 0; k + 1 < l.points.size(); ++k) {
         const Vec3 &a = l.points[k].at.centre, &b = l.points[k + 1].at.centre;
         near_patch =
@@ -371,7 +442,7 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
     throw defect(std::string("laid out passes the core cannot follow: ") + e.what());
   }
   if (!L.path->vertical()) check_posture(*L.path, L, path_slot);
-  check_waypoints(*L.path, lines, L);
+  check_waypoints(*L.path, lines, {rq.x_lo - R, rq.x_hi + R, y_lo - R, y_hi + R}, R, L);
   return L;
 }
 

@@ -87,6 +87,7 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
       out.deformations.emplace_back(name, make<Deformation>(scene, catalog, name));
   out.layout = make_layout(scene, *out.tool, out.surface, *out.path);
   out.parameter_settings = parameter_settings(scene.table("analysis"));
+  out.parameter_names = select_parameters(scene.table("analysis").strings("parameters"));
   const SlotTable& path_slot = scene.slot("path");
   const std::string evaluator = scene.slot("evaluator").plugin;
   if (out.layout.path->feed_axis() == ToolPath::FeedAxis::None && !out.evaluator->follows_curves())
@@ -385,9 +386,8 @@ RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog,
     Surface residual;
     residual.map = result.residual;
     const Roughness height = roughness(result.residual);
-    result.parameters = compute_parameters(
-        residual, select_parameters(scene.table("analysis").strings("parameters")),
-        m.parameter_settings, &height);
+    result.parameters =
+        compute_parameters(residual, m.parameter_names, m.parameter_settings, &height);
     return height;
   });
   return result;

@@ -61,7 +61,8 @@ struct Prepared {
   std::shared_ptr<DynamicsModel> dynamics;
   std::vector<std::pair<std::string, std::shared_ptr<Deformation>>> deformations;
   Layout layout;
-  ParameterSettings parameter_settings;  // [analysis], checked
+  ParameterSettings parameter_settings;      // [analysis], checked
+  std::vector<std::string> parameter_names;  // [analysis] parameters, selected
 };
 
 // What the evaluator is asked for a prepared scene: tool, path, contact range, threads.

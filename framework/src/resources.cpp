@@ -1,5 +1,6 @@
 #include "resources.hpp"
 
+#include <sched.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -8,8 +9,10 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <thread>
 
 #include "log.hpp"
+#include "metrology/parameters.hpp"
 #include "topomill/cut_state.hpp"
 
 namespace topomill {
@@ -81,6 +84,14 @@ std::uint64_t available_memory() {
   return avail;
 }
 
+unsigned usable_cores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0)
+    return static_cast<unsigned>(CPU_COUNT(&set));
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
 double effect_time_step(const Prepared& m) {
   const ToolPath& path = *m.layout.path;
   const double tooth_period = 2 * M_PI / std::abs(path.spindle_rate()) / m.tool->teeth();
@@ -114,6 +125,8 @@ MemoryEstimate estimate_memory(const Prepared& m, const EvaluationCost& cost) {
     return static_cast<std::uint64_t>(b < cap ? std::max(b, 0.0) : cap);
   };
   e.grid_bytes = bytes(nodes * kCoreBytesPerNode);
+  // The parameters' stage, on the residual (about the grid's size) while the maps are held.
+  e.analysis_bytes = bytes(nodes * parameter_bytes_per_point(m.parameter_names));
   e.evaluator_bytes = bytes(cost.bytes);
   e.evaluator_key = cost.bytes_key;
   e.effect_bytes = bytes(effects);
@@ -143,6 +156,7 @@ void check_memory(const Scene& scene, const Prepared& m, const EvaluationCost& c
      << evaluator << "'s own: " << format_bytes(static_cast<double>(e.evaluator_bytes)) << "; "
      << effect_samples(m)
      << " force/dynamics samples: " << format_bytes(static_cast<double>(e.effect_bytes))
+     << "; analysis.parameters: " << format_bytes(static_cast<double>(e.analysis_bytes))
      << "), and " << format_bytes(static_cast<double>(available)) << " are available: ";
   // The largest part names the key to turn.
   if (e.evaluator_bytes > e.grid_bytes && e.evaluator_bytes >= e.effect_bytes &&
@@ -151,8 +165,10 @@ void check_memory(const Scene& scene, const Prepared& m, const EvaluationCost& c
        << "'s memory grows with) or shrink region.size";
     throw InputError(where_of(scene, e.evaluator_key), e.evaluator_key, os.str());
   }
-  if (e.grid_bytes + e.evaluator_bytes >= e.effect_bytes) {
+  if (e.grid_bytes + e.evaluator_bytes + e.analysis_bytes >= e.effect_bytes) {
     os << "raise region.spacing (memory grows as 1/spacing^2) or shrink region.size";
+    if (e.analysis_bytes > e.grid_bytes)
+      os << ", or choose fewer analysis.parameters (Sal and Str take the most)";
     if (threads > 1) os << ", or use fewer --threads";
     const Params& region = scene.table("region");
     throw InputError(region.where("spacing"), "region.spacing", os.str());
@@ -168,7 +184,9 @@ void check_memory(const Scene& scene, const Prepared& m, const EvaluationCost& c
 }
 
 void check_duration(const Scene& scene, const EvaluationCost& cost, unsigned threads) {
-  const double seconds = cost.seconds / std::max(1u, threads);
+  // Threads beyond the cores share them: 256 threads on 2 cores run as fast as 2.
+  threads = std::clamp(threads, 1u, usable_cores());
+  const double seconds = cost.seconds / threads;
   if (!(seconds > 60)) return;  // also: no estimate (0)
   const std::string evaluator = scene.slot("evaluator").plugin;
   std::ostringstream os;
@@ -180,8 +198,7 @@ void check_duration(const Scene& scene, const EvaluationCost& cost, unsigned thr
   else
     os << seconds / 86400 << " days";
   const std::string what = evaluator + " estimates this run at about " + os.str() + " on " +
-                           std::to_string(std::max(1u, threads)) + " thread(s), driven by " +
-                           cost.seconds_key;
+                           std::to_string(threads) + " thread(s), driven by " + cost.seconds_key;
   if (seconds > 1e8 || !std::isfinite(seconds)) {
     const std::string key = cost.seconds_key.substr(0, cost.seconds_key.find(' '));
     throw InputError(where_of(scene, key), key,

@@ -14,6 +14,9 @@ namespace topomill {
 // TOPOMILL_MEMORY_LIMIT (bytes, or with a K/M/G suffix) when set.
 std::uint64_t available_memory();
 
+// The cores this process may run on (its CPU affinity: a batch scheduler's share).
+unsigned usable_cores();
+
 // Samples on the force/dynamics time grid over all passes (0 when no effect is enabled).
 std::uint64_t effect_samples(const Prepared& m);
 
@@ -25,7 +28,10 @@ struct MemoryEstimate {
   std::uint64_t evaluator_bytes = 0;  // the evaluator's own buffers (EvaluationCost)
   std::string evaluator_key;          // the scene key that drives them
   std::uint64_t effect_bytes = 0;     // cut states, forces and corrections on the time grid
-  std::uint64_t total() const { return grid_bytes + evaluator_bytes + effect_bytes; }
+  std::uint64_t analysis_bytes = 0;   // the parameters chosen (analysis.parameters)
+  std::uint64_t total() const {
+    return grid_bytes + evaluator_bytes + effect_bytes + analysis_bytes;
+  }
 };
 
 MemoryEstimate estimate_memory(const Prepared& m, const EvaluationCost& cost);

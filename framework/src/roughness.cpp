@@ -7,19 +7,45 @@
 
 namespace topomill {
 
+namespace {
+// Heights vary beyond round-off where Sq exceeds this share of the largest |height| (a level map
+// far from zero has a mean a rounding off its heights, and Ssk, Sku of +-1 from that alone).
+constexpr double kRoundOff = 1e-12;
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> Roughness::undefined() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  if (!relief)
+    for (const char* n : {"Ssk", "Sku"})
+      out.emplace_back(n, "the heights do not vary beyond their round-off, and " + std::string(n) +
+                              " divides by Sq");
+  if (pairs == 0) out.emplace_back("Sdq", "no two valid points are neighbours");
+  if (cells == 0) out.emplace_back("Sdr", "no cell has four valid corners");
+  if (gwyddion_cells == 0)
+    out.emplace_back("Sdr_gwyddion", "no cell or border strip has its valid corners");
+  return out;
+}
+
 std::vector<Roughness::Reported> Roughness::reported() const {
-  return {{"Sa", Sa * 1e3, "um", ""},
-          {"Sq", Sq * 1e3, "um", ""},
-          {"Sp", Sp * 1e3, "um", ""},
-          {"Sv", Sv * 1e3, "um", ""},
-          {"Sz", Sz * 1e3, "um", ""},
-          {"Ssk", Ssk, "1", ""},
-          {"Sku", Sku, "1", ""},
-          {"Sdq", Sdq, "1", "forward differences over all horizontal and vertical neighbour pairs"},
-          {"Sdr", Sdr, "%", "two triangles per cell between nodes, (nx-1)(ny-1) cells"},
-          {"Sdr_gwyddion", Sdr_gwyddion, "%",
-           "Gwyddion's: four triangles per cell about its mean height, half-cell border strips, "
-           "nx ny cells"}};
+  std::vector<Reported> all = {
+      {"Sa", Sa * 1e3, "um", ""},
+      {"Sq", Sq * 1e3, "um", ""},
+      {"Sp", Sp * 1e3, "um", ""},
+      {"Sv", Sv * 1e3, "um", ""},
+      {"Sz", Sz * 1e3, "um", ""},
+      {"Ssk", Ssk, "1", ""},
+      {"Sku", Sku, "1", ""},
+      {"Sdq", Sdq, "1", "forward differences over all horizontal and vertical neighbour pairs"},
+      {"Sdr", Sdr, "%", "two triangles per cell between nodes, (nx-1)(ny-1) cells"},
+      {"Sdr_gwyddion", Sdr_gwyddion, "%",
+       "Gwyddion's: four triangles per cell about its mean height, half-cell border strips, "
+       "nx ny cells"}};
+  std::vector<Reported> out;
+  const auto gone = undefined();
+  for (auto& r : all)
+    if (std::none_of(gone.begin(), gone.end(), [&](const auto& u) { return u.first == r.name; }))
+      out.push_back(std::move(r));
+  return out;
 }
 
 namespace {
@@ -46,9 +72,11 @@ double excess_cell(double z00, double z10, double z11, double z01, double dx, do
          excess_quarter(z11, z01, c, dx, dy) + excess_quarter(z01, z00, c, dy, dx);
 }
 
-double sdr_gwyddion(const HeightMap& map, const std::function<bool(std::size_t)>& ok) {
+// Sdr_gwyddion in percent, and the flat area it was taken over (0: undefined).
+std::pair<double, double> sdr_gwyddion(const HeightMap& map,
+                                       const std::function<bool(std::size_t)>& ok) {
   const Grid& g = map.grid;
-  if (g.nx < 2 || g.ny < 2) return 0.0;
+  if (g.nx < 2 || g.ny < 2) return {0.0, 0.0};
   double excess = 0, flat = 0;
   for (std::size_t j = 0; j + 1 < g.ny; ++j)
     for (std::size_t i = 0; i + 1 < g.nx; ++i)
@@ -78,7 +106,7 @@ double sdr_gwyddion(const HeightMap& map, const std::function<bool(std::size_t)>
   for (std::size_t k :
        {g.index(0, 0), g.index(g.nx - 1, 0), g.index(0, g.ny - 1), g.index(g.nx - 1, g.ny - 1)})
     if (ok(k)) flat += 0.25 * g.dx * g.dy;  // corner quarters, flat
-  return flat > 0 ? 100.0 * excess / flat : 0.0;
+  return {flat > 0 ? 100.0 * excess / flat : 0.0, flat};
 }
 }  // namespace
 
@@ -91,20 +119,35 @@ Roughness roughness(const HeightMap& map, const std::vector<std::uint8_t>& valid
     if (ok(i)) sum += z[i], n += 1;
   if (n == 0) return r;
   r.mean = sum / n;
-  double m1 = 0, m2 = 0, m3 = 0, m4 = 0, hi = -INFINITY, lo = INFINITY;
+  double hi = -INFINITY, lo = INFINITY, top = 0;
   for (std::size_t i = 0; i < z.size(); ++i) {
     if (!ok(i)) continue;
-    const double d = z[i] - r.mean, d2 = d * d;
-    m1 += std::abs(d), m2 += d2, m3 += d2 * d, m4 += d2 * d2;
-    hi = std::max(hi, d), lo = std::min(lo, d);
+    hi = std::max(hi, z[i] - r.mean), lo = std::min(lo, z[i] - r.mean);
+    top = std::max(top, std::abs(z[i]));
   }
-  r.Sa = m1 / n;
-  r.Sq = std::sqrt(m2 / n);
+  // The moments of the deviations in units of a power of two near the largest one, so that
+  // neither denormal heights (whose squares vanish: Sq was 0 below Sa) nor huge ones (whose
+  // fourth powers overflow) lose them; scaling by a power of two is exact, so the values are
+  // those of the unscaled sums wherever those neither underflow nor overflow.
+  int exponent = 0;
+  std::frexp(std::max(hi, -lo), &exponent);
+  const double unit = std::max(hi, -lo) > 0 ? std::ldexp(1.0, exponent) : 0.0;
+  double m1 = 0, m2 = 0, m3 = 0, m4 = 0;
+  if (unit > 0)
+    for (std::size_t i = 0; i < z.size(); ++i) {
+      if (!ok(i)) continue;
+      const double d = (z[i] - r.mean) / unit, d2 = d * d;
+      m1 += std::abs(d), m2 += d2, m3 += d2 * d, m4 += d2 * d2;
+    }
+  r.Sa = unit * (m1 / n);
+  const double q = std::sqrt(m2 / n);  // Sq / unit
+  r.Sq = unit * q;
   r.Sp = std::max(hi, 0.0);  // a flat map's mean can sit a rounding above every height
   r.Sv = std::max(-lo, 0.0);
   r.Sz = r.Sp + r.Sv;
-  r.Ssk = r.Sq > 0 ? m3 / n / (r.Sq * r.Sq * r.Sq) : 0.0;
-  r.Sku = r.Sq > 0 ? m4 / n / (r.Sq * r.Sq * r.Sq * r.Sq) : 0.0;
+  r.relief = r.Sq > kRoundOff * top;
+  r.Ssk = r.relief ? m3 / n / (q * q * q) : 0.0;
+  r.Sku = r.relief ? m4 / n / (q * q * q * q) : 0.0;
 
   const Grid& g = map.grid;
   double slopes = 0, pairs = 0;
@@ -121,6 +164,7 @@ Roughness roughness(const HeightMap& map, const std::vector<std::uint8_t>& valid
       slopes += d * d, pairs += 1;
     }
   r.Sdq = pairs > 0 ? std::sqrt(2 * slopes / pairs) : 0.0;
+  r.pairs = pairs;
 
   double excess = 0, flat = 0;
   for (std::size_t j = 0; j + 1 < g.ny; ++j)
@@ -135,7 +179,9 @@ Roughness roughness(const HeightMap& map, const std::vector<std::uint8_t>& valid
       flat += g.dx * g.dy;
     }
   r.Sdr = flat > 0 ? 100.0 * excess / flat : 0.0;
-  r.Sdr_gwyddion = sdr_gwyddion(map, ok);
+  r.cells = flat / (g.dx * g.dy);
+  const auto [sdr_g, area_g] = sdr_gwyddion(map, ok);
+  r.Sdr_gwyddion = sdr_g, r.gwyddion_cells = area_g / (g.dx * g.dy);
   return r;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "topomill/types.hpp"
@@ -24,6 +25,12 @@ namespace topomill {
 struct Roughness {
   double mean = 0, Sa = 0, Sq = 0, Sp = 0, Sv = 0, Sz = 0, Ssk = 0, Sku = 0, Sdq = 0, Sdr = 0,
          Sdr_gwyddion = 0;
+  // What the parameters were taken over: whether the heights vary beyond their round-off (Ssk
+  // and Sku divide by Sq), the pairs of valid neighbours (Sdq), and the cells with four valid
+  // corners (Sdr) and Gwyddion's cells and strips (Sdr_gwyddion). Where one is missing, its
+  // parameters are undefined, not 0 or 1.
+  bool relief = false;
+  double pairs = 0, cells = 0, gwyddion_cells = 0;
 
   // One parameter as reported (summary.json, measure --json, the console).
   struct Reported {
@@ -32,8 +39,10 @@ struct Roughness {
     std::string unit;    // "um", "%", or "1" (dimensionless)
     std::string method;  // the discretisation, where more than one is in use; else empty
   };
-  // In the order the console prints them.
+  // In the order the console prints them; the undefined ones left out.
   std::vector<Reported> reported() const;
+  // The parameters undefined for this map, each with why.
+  std::vector<std::pair<std::string, std::string>> undefined() const;
 };
 
 // `valid` (one per node, 1 = valid) restricts every sum to the valid nodes: slopes to pairs of

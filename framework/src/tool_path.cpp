@@ -24,6 +24,10 @@ ToolPath::ToolPath(std::shared_ptr<const SurfaceShape> surface, double offset, d
   for (std::size_t p = 0; p < passes_.size(); ++p) {
     if (!passes_[p].waypoints.empty()) set_waypoint_pass(p);
     Pass& pass = passes_[p];
+    // The phase matters only modulo a turn, and the evaluators' walks count turns from it: kept
+    // within one (a start_angle of 1e300 deg made tooth_passage index turns past any integer).
+    // fmod is exact and leaves a phase within a turn as it was.
+    pass.phase = std::fmod(pass.phase, 2 * M_PI);
     // Along the normal the axis turns only where the normal does: over the curvature (a pass
     // along Y on a curved surface); along X, or on a plane, its frame is fixed.
     if (pass.posture.normal)

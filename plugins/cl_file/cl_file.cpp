@@ -40,16 +40,21 @@ class ClFile : public PathModel {
       file = std::filesystem::path(at.file).parent_path() / file;
     path_ = file.lexically_normal().string();
     const std::string format = p.string("format");
+    std::string text;
     try {
-      data_ = cl::read_file(path_, format == "csv"   ? cl::Format::Csv
-                                   : format == "apt" ? cl::Format::Apt
-                                                     : cl::Format::Auto);
+      // Recorded as read: a resumed sweep reruns a case whose file changed.
+      text = read_input_file(path_, cl::kMaxBytes, "cutter-location data (CSV or APT CL)");
+    } catch (const InputError& e) {
+      throw ParamError("file",
+                       "cannot read the cutter-location file " + path_ + ": " + e.message());
+    }
+    try {
+      data_ = cl::read_text(text, format == "csv"   ? cl::Format::Csv
+                                  : format == "apt" ? cl::Format::Apt
+                                                    : cl::guess_format(path_, text));
     } catch (const cl::ReadError& e) {
       throw InputError(SourceRef{path_, e.line, e.column}, "path.file", e.what());
-    } catch (const std::runtime_error& e) {
-      throw ParamError("file", "cannot read the cutter-location file " + path_ + ": " + e.what());
     }
-    record_input_file(path_);  // a resumed sweep reruns a case whose file changed
     if (data_.passes.empty())
       throw ParamError("file", "the cutter-location file " + path_ +
                                    " holds no move (a pass needs two points at least)");

@@ -5,12 +5,16 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <map>
+
+#include "topomill/interrupt.hpp"
 
 namespace topomill::plugins::cl {
 
 namespace {
+
+// Lines parsed between two looks at the stop flag, less one (a mask).
+constexpr int kLinesPerStopCheck = (1 << 14) - 1;
 
 std::string upper(std::string s) {
   for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -68,6 +72,7 @@ void for_each_line(const std::string& text, F&& f) {
   std::size_t start = 0;
   int line = 1;
   while (start < text.size()) {
+    if ((line & kLinesPerStopCheck) == 0) throw_if_interrupted();  // 256 MiB parse in seconds
     const std::size_t end = std::min(text.find('\n', start), text.size());
     std::string s = text.substr(start, end - start);
     if (!s.empty() && s.back() == '\r') s.pop_back();
@@ -119,10 +124,13 @@ Data read_csv(const std::string& text) {
         std::string name = f.text;
         for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         if (std::find(known.begin(), known.end(), name) == known.end())
+          // Not quoted: a file that is no CL data at all (a scene may name any file) keeps
+          // its first line to itself.
           throw ReadError(line, f.column,
-                          "unknown column '" + f.text.substr(0, 40) +
-                              "' in the header: expected x, y, z (mm), optionally i, j, k (the "
-                              "tool axis) and f (feed, mm/min)");
+                          "column " + std::to_string(names.size() + 1) +
+                              " of the header is not a name topomill knows: expected x, y, z "
+                              "(mm), optionally i, j, k (the tool axis) and f (feed, mm/min), "
+                              "separated by commas");
         if (column.count(name))
           throw ReadError(line, f.column, "column '" + name + "' appears twice in the header");
         column[name] = names.size();
@@ -248,9 +256,15 @@ Data read_apt(const std::string& text) {
     } else if (w == "END-OF-PATH" || w == "FINI" || w == "END") {
       passes.end();
     } else if (std::find(ignored.begin(), ignored.end(), w) == ignored.end()) {
+      // Named only when it is APT's own word: a file that is no CL data at all (a scene may name
+      // any file) keeps its first line to itself.
+      static const std::vector<std::string> apt_words{
+          "CIRCLE", "GOFWD",  "GOLFT", "GORGT", "GOBACK", "GOUP",  "GODOWN", "GODLTA", "INDIRV",
+          "INDIRP", "CUTCOM", "CYCLE", "PSIS",  "DNTCUT", "THICK", "ARCSLP", "PIVOTZ", "ROTABL"};
+      const bool known = std::find(apt_words.begin(), apt_words.end(), w) != apt_words.end();
       throw ReadError(line, word.column,
-                      "'" + word.text.substr(0, 40) +
-                          "' is not a statement topomill follows: expected GOTO, FROM, FEDRAT, "
+                      (known ? w + " is" : std::string("this is")) +
+                          " not a statement topomill follows: expected GOTO, FROM, FEDRAT, "
                           "RAPID, UNITS, TLAXIS, END-OF-PATH, FINI, END (motion in straight "
                           "lines), or one that does not move the tool (PARTNO, CUTTER, SPINDL, "
                           "COOLNT, ...); circles (CIRCLE, GOFWD) and cutter compensation are not "
@@ -298,22 +312,6 @@ Format guess_format(const std::string& path, const std::string& text) {
                         "MULTAX", "CUTTER", "LOADTL", "TLDATA"})
     if (head.rfind(w, 0) == 0) return Format::Apt;
   return Format::Csv;
-}
-
-Data read_file(const std::string& path, Format format) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot open it");
-  std::string text;
-  char buf[1 << 16];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
-    text.append(buf, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > kMaxBytes)
-      throw std::runtime_error("it is larger than " + std::to_string(kMaxBytes >> 20) +
-                               " MiB: expected a smaller file (a patch needs the passes near "
-                               "it only)");
-  }
-  if (in.bad()) throw std::runtime_error("it could not be read");
-  return read_text(text, format == Format::Auto ? guess_format(path, text) : format);
 }
 
 }  // namespace topomill::plugins::cl

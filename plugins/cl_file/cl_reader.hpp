@@ -41,10 +41,9 @@ enum class Format { Csv, Apt, Auto };
 constexpr std::size_t kMaxBytes = std::size_t{256} << 20;
 constexpr std::size_t kMaxPoints = std::size_t{1} << 24;
 
-// Throws ReadError for malformed content, std::runtime_error("...") when the file cannot be read.
-// Auto guesses from the name (read_file) and the first statement; the file is read once.
+// Throws ReadError for malformed content, Interrupted on a stop request. Auto guesses from the
+// first statement.
 Data read_text(const std::string& text, Format format);
-Data read_file(const std::string& path, Format format);
 
 // The format a file's name suggests (.csv, .txt: CSV; .cl, .cls, .apt, .aptsource: APT), or
 // its first statement when the name says nothing.

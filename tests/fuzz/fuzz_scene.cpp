@@ -4,6 +4,7 @@
 // a sanitizer report or a hang is a finding.
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 
 #include "pipeline.hpp"
@@ -11,9 +12,18 @@
 #include "scene.hpp"
 #include "topomill/error.hpp"
 
+namespace {
+// The memory the scene may plan for, as a user's TOPOMILL_MEMORY_LIMIT: far below the fuzzer's
+// 2 GB, so that a scene whose layout or maps would not fit is refused by the estimates before
+// anything large is laid out (a refusal is an answer; an allocation of gigabytes, or tens of
+// seconds laying out passes, is a finding).
+constexpr const char* kMemoryLimit = "64M";
+}  // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static topomill::PluginCatalog catalog(
-      {{topomill::PluginCatalog::builtin_dir(), "built-in"}});
+  static const bool limited = setenv("TOPOMILL_MEMORY_LIMIT", kMemoryLimit, 1) == 0;
+  (void)limited;
+  static topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
     const auto doc = topomill::SceneDocument::parse_string(text, "fuzz.toml");

@@ -129,7 +129,7 @@ TEST_CASE("every writer round-trips through its reader", "[metrology][io]") {
       std::string(vts.child("VTKFile").child("StructuredGrid").attribute("WholeExtent").value()) ==
       "0 22 0 16 0 0");
   for (const auto& e : std::filesystem::directory_iterator(dir))
-    CHECK(e.path().extension() != ".partial");
+    CHECK(e.path().filename().string().find(".partial") == std::string::npos);
 }
 
 TEST_CASE("form removal takes planes, polynomials and arcs to zero", "[metrology][form]") {

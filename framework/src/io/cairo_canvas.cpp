@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <exception>
 #include <stdexcept>
 
 #include "io/atomic_file.hpp"
@@ -35,9 +36,25 @@ void Canvas::text(double x, double y, const std::string& s, double ax, double ay
 
 void Canvas::write(const std::string& path) const {
   cairo_surface_flush(surface.get());
-  write_atomically_to(path, [&](const std::string& tmp) {
-    if (cairo_surface_write_to_png(surface.get(), tmp.c_str()) != CAIRO_STATUS_SUCCESS)
-      throw std::runtime_error("cannot write PNG '" + path + "'");
+  write_atomically(path, [&](std::ostream& out) {
+    // cairo is C: an exception (a stop request, a full disk) waits here until it has returned.
+    struct Sink {
+      std::ostream& out;
+      std::exception_ptr failed;
+    } sink{out, nullptr};
+    const auto put = [](void* closure, const unsigned char* data, unsigned int length) {
+      auto* s = static_cast<Sink*>(closure);
+      try {
+        s->out.write(reinterpret_cast<const char*>(data), length);
+        return CAIRO_STATUS_SUCCESS;
+      } catch (...) {
+        s->failed = std::current_exception();
+        return CAIRO_STATUS_WRITE_ERROR;
+      }
+    };
+    const cairo_status_t status = cairo_surface_write_to_png_stream(surface.get(), put, &sink);
+    if (sink.failed) std::rethrow_exception(sink.failed);
+    if (status != CAIRO_STATUS_SUCCESS) throw std::runtime_error("cannot write PNG '" + path + "'");
   });
 }
 

@@ -27,11 +27,18 @@ std::string holder_of(int fd) {
   return s;
 }
 
+// Whether `fd` is a file a run may have made: regular, with no other name (a hard link planted
+// at .lock would have its bytes replaced by the pid).
+bool own_lock_file(int fd) {
+  struct stat st {};
+  return fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_nlink == 1;
+}
+
 // Whether `fd` is still the file at `path` (a holder that gave up may have removed it).
 bool same_file(int fd, const std::string& path) {
   struct stat a {
   }, b{};
-  return fstat(fd, &a) == 0 && stat(path.c_str(), &b) == 0 && a.st_dev == b.st_dev &&
+  return fstat(fd, &a) == 0 && lstat(path.c_str(), &b) == 0 && a.st_dev == b.st_dev &&
          a.st_ino == b.st_ino;
 }
 }  // namespace
@@ -49,11 +56,26 @@ OutputLock::OutputLock(const std::string& dir, SourceRef where, std::string opti
       throw InputError(where, option,
                        "cannot create the output directory '" + dir_ + "': " + ec.message());
     created_ = created_ || !existed;
-    fd_ = open(file_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    // Never through a link planted at .lock: the pid below would be written into its target.
+    fd_ = open(file_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+    if (fd_ < 0 && errno == ELOOP)
+      throw InputError(where, option,
+                       "'" + file_ +
+                           "' is a symbolic link: expected the directory's own lock file or "
+                           "nothing (remove the link; someone may have planted it)");
     if (fd_ < 0)
       throw InputError(
           where, option,
           "cannot write into the output directory '" + dir_ + "': " + std::strerror(errno));
+    if (!own_lock_file(fd_)) {
+      close(fd_);
+      fd_ = -1;
+      throw InputError(where, option,
+                       "'" + file_ +
+                           "' is not a lock file topomill made (not a regular file, or linked "
+                           "from elsewhere): expected it absent or a run's lock; "
+                           "remove it");
+    }
     int rc;
     while ((rc = flock(fd_, wait ? LOCK_EX : LOCK_EX | LOCK_NB)) != 0 && errno == EINTR)
       if (stop_flag().load()) break;

@@ -1,12 +1,14 @@
 #include "io/read_file.hpp"
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 
+#include "interrupt.hpp"
 #include "resources.hpp"
 #include "topomill/error.hpp"
 
@@ -18,11 +20,28 @@ namespace {
 // and sums; the PSD is held within 2^22 padded values), and about 55 more with missing points
 // (the ACF counts each lag's pairs by a second transform).
 constexpr double kBytesPerPoint = 180;
-}
+}  // namespace
 
 std::uint64_t readable_bytes() {
   return static_cast<std::uint64_t>(0.9 * static_cast<double>(available_memory()));
 }
+
+namespace {
+// Bytes read between two checks of the stop flag.
+constexpr std::size_t kReadChunk = std::size_t{1} << 20;
+
+std::string kind_of(mode_t mode) {
+  return S_ISDIR(mode) ? "is a directory" : "is not a regular file (a device or a pipe)";
+}
+
+// An open descriptor that closes itself.
+struct Fd {
+  int fd;
+  ~Fd() {
+    if (fd >= 0) close(fd);
+  }
+};
+}  // namespace
 
 std::uint64_t regular_file_size(const std::string& path, std::uint64_t max_bytes,
                                 const std::string& what) {
@@ -31,11 +50,7 @@ std::uint64_t regular_file_size(const std::string& path, std::uint64_t max_bytes
     throw InputError(SourceRef{path}, "",
                      std::string("cannot read the file: ") + std::strerror(errno));
   if (!S_ISREG(st.st_mode))
-    throw InputError(SourceRef{path}, "",
-                     std::string(S_ISDIR(st.st_mode) ? "is a directory"
-                                                     : "is not a regular file "
-                                                       "(a device or a pipe)") +
-                         ": expected " + what);
+    throw InputError(SourceRef{path}, "", kind_of(st.st_mode) + ": expected " + what);
   const auto size = static_cast<std::uint64_t>(st.st_size);
   if (size > max_bytes)
     throw InputError(SourceRef{path}, "",
@@ -47,12 +62,39 @@ std::uint64_t regular_file_size(const std::string& path, std::uint64_t max_bytes
 
 std::string read_file_bounded(const std::string& path, std::uint64_t max_bytes,
                               const std::string& what) {
-  const std::uint64_t size = regular_file_size(path, max_bytes, what);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(SourceRef{path}, "", "cannot read the file");
+  // Opened without waiting (a FIFO would block an open for reading until a writer came), then
+  // the descriptor itself is checked: the file read is the file checked.
+  const Fd file{open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+  if (file.fd < 0)
+    throw InputError(SourceRef{path}, "",
+                     std::string("cannot read the file: ") + std::strerror(errno));
+  struct stat st {};
+  if (fstat(file.fd, &st) != 0)
+    throw InputError(SourceRef{path}, "",
+                     std::string("cannot read the file: ") + std::strerror(errno));
+  if (!S_ISREG(st.st_mode))
+    throw InputError(SourceRef{path}, "", kind_of(st.st_mode) + ": expected " + what);
+  const auto size = static_cast<std::uint64_t>(st.st_size);
+  if (size > max_bytes)
+    throw InputError(SourceRef{path}, "",
+                     "the file is " + format_bytes(static_cast<double>(size)) + ", more than the " +
+                         format_bytes(static_cast<double>(max_bytes)) + " allowed: expected " +
+                         what);
+  // Exactly as many bytes as its size said (a file that grows meanwhile is read to that size,
+  // one that shrinks to its end), a chunk at a time.
   std::string bytes(size, '\0');
-  in.read(bytes.data(), static_cast<std::streamsize>(size));
-  bytes.resize(static_cast<std::size_t>(in.gcount()));  // a file that shrank meanwhile
+  std::size_t got = 0;
+  while (got < bytes.size()) {
+    throw_if_interrupted();
+    const ssize_t n = read(file.fd, bytes.data() + got, std::min(kReadChunk, bytes.size() - got));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0)
+      throw InputError(SourceRef{path}, "",
+                       std::string("cannot read the file: ") + std::strerror(errno));
+    if (n == 0) break;
+    got += static_cast<std::size_t>(n);
+  }
+  bytes.resize(got);
   return bytes;
 }
 

@@ -1,6 +1,9 @@
 #include "io/run_outputs.hpp"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <sstream>
@@ -27,6 +30,9 @@ namespace fs = std::filesystem;
 namespace topomill {
 
 namespace {
+
+// The staging directories' names: ".incomplete." and six random characters.
+constexpr const char* kStagingPrefix = ".incomplete.";
 
 // A scene value as a reader writes it: 0.3 (the shortest exact text, not 0.29999999999999999),
 // cw (no quotes), [0.86, 0.86].
@@ -65,6 +71,29 @@ std::string describe_scene(const Scene& scene) {
   return os.str();
 }
 
+// A dead run's staging directories and files (this run holds the lock: no live run has one). A
+// link named so is removed, not followed.
+void remove_stale_staging(const std::string& out_dir) {
+  std::error_code ec;
+  for (fs::directory_iterator it(out_dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(kStagingPrefix, 0) == 0 ||
+        (name.front() == '.' && name.find(kStagingSuffix) != std::string::npos)) {
+      std::error_code gone;
+      fs::remove_all(it->path(), gone);
+    }
+  }
+}
+
+fs::path make_staging_dir(const std::string& out_dir) {
+  std::string name = (fs::path(out_dir) / kStagingPrefix).string() + "XXXXXX";
+  if (!mkdtemp(name.data()))
+    throw InputError(
+        SourceRef{"command line"}, "--out",
+        "cannot write into the output directory '" + out_dir + "': " + std::strerror(errno));
+  return name;
+}
+
 }  // namespace
 
 RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
@@ -74,12 +103,10 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
   std::error_code ec;
   // Files are written into a hidden staging directory and moved in only when all are whole, so
   // a killed run leaves its pieces there (removed by the next run), never beside summary.json.
-  const fs::path staging = fs::path(out_dir) / ".incomplete";
-  fs::remove_all(staging, ec);
-  fs::create_directories(staging, ec);
-  if (ec)
-    throw InputError(SourceRef{"command line"}, "--out",
-                     "cannot write into the output directory '" + out_dir + "': " + ec.message());
+  // The directory is made anew under a name of its own (mkdtemp), so nothing planted in the
+  // output directory can stand in for it.
+  remove_stale_staging(out_dir);
+  const fs::path staging = make_staging_dir(out_dir);
 
   const auto t0 = std::chrono::steady_clock::now();
   const bool unrolled = scene.table("analysis").string("form") == "nominal";  // else on XY

@@ -3,12 +3,14 @@
 #include <md5.h>
 #include <zip.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
 #include <pugixml.hpp>
 #include <sstream>
 
+#include "interrupt.hpp"
 #include "io/atomic_file.hpp"
 #include "io/read_file.hpp"
 #include "topomill/error.hpp"
@@ -18,10 +20,25 @@ namespace topomill {
 
 namespace {
 
+// Bytes hashed or converted between two checks of the stop flag (a 730 MB map takes seconds).
+constexpr std::size_t kStopCheckBytes = std::size_t{1} << 24;
+
 std::string md5_hex(const void* data, std::size_t size) {
+  MD5_CTX ctx;
+  MD5Init(&ctx);
+  const auto* bytes = static_cast<const std::uint8_t*>(data);
+  for (std::size_t at = 0; at < size; at += kStopCheckBytes) {
+    throw_if_interrupted();
+    MD5Update(&ctx, bytes + at, std::min(kStopCheckBytes, size - at));
+  }
   char out[MD5_DIGEST_STRING_LENGTH];
-  MD5Data(static_cast<const std::uint8_t*>(data), size, out);
+  MD5End(&ctx, out);
   return out;
+}
+
+// libzip asks this while it compresses: a stop request cancels the archive.
+int cancel_on_stop(zip_t*, void*) {
+  return stop_flag().load() ? 1 : 0;
 }
 
 struct ZipCloser {
@@ -243,6 +260,7 @@ void write_x3p(const std::string& path, const HeightMap& map, const FileInfo& in
   std::string data(g.size() * 8, '\0'), bits;
   if (masked) bits.assign((g.size() + 7) / 8, '\0');
   for (std::size_t i = 0; i < g.size(); ++i) {
+    if (i % (kStopCheckBytes / 8) == 0) throw_if_interrupted();
     const bool ok = !masked || valid[i] != 0;
     const double v = ok ? map.z[i] * 1e-3 : 0.0;
     std::memcpy(data.data() + i * 8, &v, 8);
@@ -284,6 +302,7 @@ void write_x3p(const std::string& path, const HeightMap& map, const FileInfo& in
     int err = 0;
     zip_t* z = zip_open(tmp.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
     if (!z) throw std::runtime_error("cannot create '" + path + "'");
+    zip_register_cancel_callback_with_state(z, cancel_on_stop, nullptr, nullptr);
     auto add = [&](const char* name, const std::string& content) {
       zip_source_t* src = zip_source_buffer(z, content.data(), content.size(), 0);
       if (!src || zip_file_add(z, name, src, ZIP_FL_OVERWRITE) < 0) {
@@ -298,6 +317,7 @@ void write_x3p(const std::string& path, const HeightMap& map, const FileInfo& in
     add("md5checksum.hex", checksum);
     if (zip_close(z) != 0) {
       zip_discard(z);
+      throw_if_interrupted();
       throw std::runtime_error("cannot write '" + path + "'");
     }
   });

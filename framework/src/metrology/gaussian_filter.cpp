@@ -3,6 +3,8 @@
 #include <cmath>
 #include <vector>
 
+#include "interrupt.hpp"
+
 namespace topomill {
 
 namespace {
@@ -28,7 +30,8 @@ void convolve(const std::vector<double>& in, std::vector<double>& out, const Gri
   const long n = static_cast<long>(along_x ? g.nx : g.ny),
              lines = static_cast<long>(along_x ? g.ny : g.nx);
   out.assign(in.size(), 0.0);
-  for (long l = 0; l < lines; ++l)
+  for (long l = 0; l < lines; ++l) {
+    throw_if_interrupted();  // a long kernel over a large map takes seconds
     for (long i = 0; i < n; ++i) {
       double sum = 0;
       for (long t = std::max(-half, -i); t <= std::min(half, n - 1 - i); ++t) {
@@ -38,6 +41,7 @@ void convolve(const std::vector<double>& in, std::vector<double>& out, const Gri
       }
       out[along_x ? g.index(i, l) : g.index(l, i)] = sum;
     }
+  }
 }
 }  // namespace
 

@@ -41,6 +41,11 @@ std::vector<std::string> parameter_words();
 // parameter_words() (the schema checks that first).
 std::vector<std::string> select_parameters(const std::vector<std::string>& words);
 
+// Bytes a point that computing `names` holds at its peak besides the map itself: the
+// autocorrelation's padded field and transforms (Sal, Str), the material ratio curve's sorted
+// heights (its family); the texture direction's spectrum is held within a fixed size.
+double parameter_bytes_per_point(const std::vector<std::string>& names);
+
 struct ParameterValues {
   std::vector<Roughness::Reported> reported;  // the selected, defined ones, in catalogue order
   // Selected but not defined for this surface, with why (e.g. Sal of a map with no variance).

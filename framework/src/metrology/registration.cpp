@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 
+#include "interrupt.hpp"
 #include "metrology/fft.hpp"
 #include "metrology/resample.hpp"
 #include "topomill/error.hpp"
@@ -118,6 +119,7 @@ Registration coarse(const Surface& ref, const Surface& meas, const Transform& tu
         B.a[j * px + i] = z - mean_b, B2.a[j * px + i] = (z - mean_b) * (z - mean_b);
         mB.a[j * px + i] = 1;
       }
+  throw_if_interrupted();
   const auto FA = fft_forward(A.a, px, py), FA2 = fft_forward(A2.a, px, py),
              FmA = fft_forward(mA.a, px, py), FB = fft_forward(B.a, px, py),
              FB2 = fft_forward(B2.a, px, py), FmB = fft_forward(mB.a, px, py);
@@ -227,6 +229,7 @@ Registration register_surfaces(const Surface& ref, const Surface& meas,
   double offset = residuals(T, 0.0, used).mean();
   double now = cost(T, offset);
   for (r.iterations = 0; r.iterations < 50; ++r.iterations) {
+    throw_if_interrupted();
     Eigen::Matrix4d JtJ = Eigen::Matrix4d::Zero();
     Eigen::Vector4d Jtr = Eigen::Vector4d::Zero();
     for (std::size_t q : used) {

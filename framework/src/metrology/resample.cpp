@@ -6,13 +6,38 @@ namespace topomill {
 
 namespace {
 // Keys (1981) cubic convolution weights for the nodes at offsets -1, 0, 1, 2 from the point's
-// cell start, t in [0, 1).
+// cell start, t in [0, 1].
 void keys_weights(double t, double w[4]) {
   const double t2 = t * t, t3 = t2 * t;
   w[0] = -0.5 * t3 + t2 - 0.5 * t;
   w[1] = 1.5 * t3 - 2.5 * t2 + 1;
   w[2] = -1.5 * t3 + 2 * t2 + 0.5 * t;
   w[3] = 0.5 * t3 - 0.5 * t2;
+}
+
+// One cubic convolution over four values f at offsets -1, 0, 1, 2, of which `ok` says which are
+// given. The two inner ones must be where their weight is not zero. An outer one that is not given
+// (beyond the map's edge or a missing point, alike) is Keys' end condition from the other three,
+// f(-1) = 3 f(0) - 3 f(1) + f(2), or, both outer ones missing, the line through the inner two:
+// either keeps the interpolant exact for the polynomials the remaining values determine. Terms of
+// weight zero are left out, so a missing value never enters as 0 x NaN.
+std::optional<double> convolve(const double f_in[4], const bool ok[4], const double w[4]) {
+  if ((w[1] != 0 && !ok[1]) || (w[2] != 0 && !ok[2])) return std::nullopt;
+  double f[4] = {f_in[0], f_in[1], f_in[2], f_in[3]};
+  // Outer weights are not zero only inside the cell (0 < t < 1), where the inner two are given.
+  const bool outer_needed = w[0] != 0 || w[3] != 0;
+  if (outer_needed && !ok[0] && !ok[3]) {
+    f[0] = 2 * f[1] - f[2];
+    f[3] = 2 * f[2] - f[1];
+  } else if (outer_needed && !ok[0]) {
+    f[0] = 3 * f[1] - 3 * f[2] + f[3];
+  } else if (outer_needed && !ok[3]) {
+    f[3] = 3 * f[2] - 3 * f[1] + f[0];
+  }
+  double sum = 0;
+  for (int a = 0; a < 4; ++a)
+    if (w[a] != 0) sum += w[a] * f[a];
+  return sum;
 }
 }  // namespace
 
@@ -29,32 +54,25 @@ std::optional<double> CubicSampler::at(double x, double y) const {
   double wx[4], wy[4];
   keys_weights(u - static_cast<double>(i), wx);
   keys_weights(v - static_cast<double>(j), wy);
-  bool ok = true;
-  // Node k of row jj, with Keys' end condition beyond the map: f(-1) = 3 f(0) - 3 f(1) + f(2).
-  auto node = [&](std::ptrdiff_t k, std::ptrdiff_t jj) {
-    auto at = [&](std::ptrdiff_t kk) {
+  // Each of the four rows interpolated along x; a row beyond the map or without its inner
+  // values is missing, and the column of rows is completed as a row's values are.
+  double rows[4] = {0, 0, 0, 0};
+  bool rows_ok[4] = {false, false, false, false};
+  for (int b = 0; b < 4; ++b) {
+    const std::ptrdiff_t jj = j - 1 + b;
+    if (wy[b] == 0 || jj < 0 || jj >= ny) continue;
+    double f[4] = {0, 0, 0, 0};
+    bool ok[4] = {false, false, false, false};
+    for (int a = 0; a < 4; ++a) {
+      const std::ptrdiff_t kk = i - 1 + a;
+      if (wx[a] == 0 || kk < 0 || kk >= nx) continue;
       const std::size_t idx = g.index(static_cast<std::size_t>(kk), static_cast<std::size_t>(jj));
-      ok = ok && s_.is_valid(idx);
-      return s_.map.z[idx];
-    };
-    if (k < 0) return 3 * at(0) - 3 * at(1) + at(2);
-    if (k >= nx) return 3 * at(nx - 1) - 3 * at(nx - 2) + at(nx - 3);
-    return at(k);
-  };
-  auto row = [&](std::ptrdiff_t jj) {
-    double r = 0;
-    for (int a = 0; a < 4; ++a) r += wx[a] * node(i - 1 + a, jj);
-    return r;
-  };
-  auto row_at = [&](std::ptrdiff_t jj) {
-    if (jj < 0) return 3 * row(0) - 3 * row(1) + row(2);
-    if (jj >= ny) return 3 * row(ny - 1) - 3 * row(ny - 2) + row(ny - 3);
-    return row(jj);
-  };
-  double sum = 0;
-  for (int b = 0; b < 4; ++b) sum += wy[b] * row_at(j - 1 + b);
-  if (!ok) return std::nullopt;
-  return sum;
+      ok[a] = s_.is_valid(idx);
+      if (ok[a]) f[a] = s_.map.z[idx];
+    }
+    if (const auto r = convolve(f, ok, wx)) rows[b] = *r, rows_ok[b] = true;
+  }
+  return convolve(rows, rows_ok, wy);
 }
 
 Surface resample(const Surface& surface, const Grid& grid,

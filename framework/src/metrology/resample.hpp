@@ -1,6 +1,8 @@
 // Heights between the nodes of a surface: Keys' cubic convolution (a = -1/2: exact for
 // quadratics, continuous slope), the interpolation `compare` states for its common grid and its
-// registration. A point counts only where its 4 x 4 nodes are all valid.
+// registration. A point is given where the nodes of its cell that weigh in are valid; a missing
+// node around the cell is completed as one beyond the map's edge is (Keys' end condition), so a
+// measurement's scattered dropouts cost the points at them, not their whole neighbourhood.
 #pragma once
 
 #include <functional>
@@ -14,7 +16,7 @@ namespace topomill {
 class CubicSampler {
  public:
   explicit CubicSampler(const Surface& surface) : s_(surface) {}
-  // The height at (x, y) in mm, or nothing outside the nodes or next to an invalid one.
+  // The height at (x, y) in mm, or nothing outside the nodes or in a cell with an invalid node.
   std::optional<double> at(double x, double y) const;
 
  private:
