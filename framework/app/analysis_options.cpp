@@ -1,6 +1,8 @@
 #include "analysis_options.hpp"
 
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 #include "interrupt.hpp"
@@ -90,6 +92,19 @@ void AnalysisOptions::check() {
   if (words.empty())
     throw InputError(cli, "--parameters", "expected at least one parameter, family or 'default'");
   names = select_parameters(words);
+}
+
+void AnalysisOptions::check_spacing_used(const std::vector<std::string>& files) const {
+  if (spacing == 0) return;
+  for (const auto& f : files) {
+    std::string ext = std::filesystem::path(f).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".csv") return;
+  }
+  throw InputError(SourceRef{"command line"}, "--spacing",
+                   "no input is a CSV file, and the others (x3p, sdf, gsf) carry their own "
+                   "spacing: expected --spacing only with a CSV file that has no grid in its "
+                   "header");
 }
 
 Surface AnalysisOptions::process(Surface s) const {

@@ -22,6 +22,9 @@ struct AnalysisOptions {
   po::options_description describe();
   // Checks every option (InputError naming it); fills `settings`, `form` and `names`.
   void check();
+  // --spacing is for CSV files (the other formats carry their grid): refused when none of
+  // `files` is one, rather than silently ignored.
+  void check_spacing_used(const std::vector<std::string>& files) const;
   Form form;
   std::vector<std::string> names;
 

@@ -19,8 +19,7 @@ LoadedScene load_batch(const Args& args, const po::options_description& opts, Ba
   if (!loaded.scene) return loaded;
   if (b.jobs < 1 || b.jobs > 256)
     throw InputError(SourceRef{"command line"}, "--jobs", "expected 1 to 256 cases at once");
-  if (b.threads < 1 || b.threads > 256)
-    throw InputError(SourceRef{"command line"}, "--threads", "expected 1 to 256 threads");
+  check_threads(b.threads);
   if (b.out_dir.empty())
     b.out_dir = (std::filesystem::path("out") /
                  (std::filesystem::path(b.scene.scene_file).stem().string() + "_" + suffix))

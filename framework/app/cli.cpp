@@ -69,4 +69,10 @@ std::vector<PluginCatalog::Dir> search_path(const Common& common,
   return dirs;
 }
 
+void check_threads(unsigned threads) {
+  if (threads < 1 || threads > kMaxThreads)
+    throw InputError(SourceRef{"command line"}, "--threads",
+                     "expected 1 to " + std::to_string(kMaxThreads) + " threads");
+}
+
 }  // namespace topomill::cli

@@ -33,6 +33,10 @@ po::variables_map parse_with_positional(const std::vector<std::string>& args,
                                         const po::options_description& visible, const char* name,
                                         std::string& value, Common& common);
 
+// --threads as run, check and the batch commands take it: 1 to kMaxThreads (InputError).
+constexpr unsigned kMaxThreads = 256;
+void check_threads(unsigned threads);
+
 // Search order: --plugin-path, the scene's plugin_paths, TOPOMILL_PLUGIN_PATH, built-in.
 std::vector<PluginCatalog::Dir> search_path(const Common& common,
                                             const std::vector<std::string>& scene_paths = {});

@@ -81,6 +81,7 @@ int cmd_compare(const Args& args) {
   if (out.empty()) throw InputError(cli, "--out", "expected a directory name");
 
   const std::string sim_file = surface_file(files[0]), meas_file = surface_file(files[1]);
+  analysis.check_spacing_used({sim_file, meas_file});
   auto load = [&](const std::string& f) {
     Surface s = read_surface(f, analysis.spacing);
     s.source = f;

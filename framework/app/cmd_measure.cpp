@@ -32,6 +32,7 @@ int cmd_measure(const Args& args) {
   }
   if (file.empty()) throw InputError(SourceRef{"command line"}, "", "measure needs a file");
   analysis.check();
+  analysis.check_spacing_used({file});
   if (!out.empty()) check_surface_format(out, "--out");
 
   Surface s = read_surface(file, analysis.spacing);

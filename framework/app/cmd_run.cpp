@@ -37,8 +37,7 @@ int cmd_run(const Args& args) {
     std::cout << opts << "\n";
     return 0;
   }
-  if (threads < 1 || threads > 256)
-    throw InputError(SourceRef{"command line"}, "--threads", "expected 1 to 256 threads");
+  check_threads(threads);
   const Scene& scene = *loaded.scene;
   // Where the directory came from, for messages: --out, the scene's [output] dir, or neither.
   SourceRef out_where{"command line"};

@@ -20,7 +20,8 @@ constexpr double kMinFeedPerTooth = 1e-6;  // mm, as cutting.feed_per_tooth's le
 // vectors' growth (measured: 420 bytes a pass at 1e6 passes, `topomill check` under
 // /usr/bin/time -f %M).
 constexpr double kLayoutBytesPerPass = 512;
-constexpr double kPassesBeyond = 3;  // a step-over beyond each side, and one rounded up
+constexpr double kPassesBeyond = 3;         // a step-over beyond each side, and one rounded up
+constexpr double kLargestCoordinate = 1e6;  // mm: a kilometre, as the workpiece's radius
 
 std::string format_count(double n) {
   std::ostringstream os;
@@ -100,6 +101,12 @@ static ToolPath::Pass waypoint_pass(const PassLine& l, const FeedLimits& feed,
     if (!w.centre.allFinite() || !w.axis.allFinite() || !std::isfinite(w.speed))
       throw defect("read a point that is not finite");
     if (std::abs(w.axis.norm() - 1) > 1e-9) throw defect("read an axis that is not a unit vector");
+    // Far points overflow the path's lengths and times, and the refusal then fell on another
+    // point (a y of 1e308 mm was reported at the next line).
+    if (!(w.centre.cwiseAbs().maxCoeff() <= kLargestCoordinate))
+      throw refuse("the point lies " + format_number(w.centre.cwiseAbs().maxCoeff()) +
+                   " mm from the origin along an axis: expected coordinates of a part, within " +
+                   format_number(kLargestCoordinate) + " mm");
     if (k + 1 < l.points.size() && !(w.speed >= feed.lo && w.speed <= feed.hi))
       throw refuse("the feed to the next point is " + format_number(w.speed * 60) +
                    " mm/min: expected " + format_number(feed.lo * 60) + " to " +

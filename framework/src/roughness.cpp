@@ -72,7 +72,7 @@ double excess_cell(double z00, double z10, double z11, double z01, double dx, do
          excess_quarter(z11, z01, c, dx, dy) + excess_quarter(z01, z00, c, dy, dx);
 }
 
-// Sdr_gwyddion in percent, and the flat area it was taken over (0: undefined).
+// Sdr_gwyddion in percent, and the area of its cells and strips (0: no slope seen, undefined).
 std::pair<double, double> sdr_gwyddion(const HeightMap& map,
                                        const std::function<bool(std::size_t)>& ok) {
   const Grid& g = map.grid;
@@ -103,10 +103,11 @@ std::pair<double, double> sdr_gwyddion(const HeightMap& map,
     for (std::size_t i : {std::size_t{0}, g.nx - 1})
       if (ok(g.index(i, j)) && ok(g.index(i, j + 1)))
         strip(map.at(i, j), map.at(i, j + 1), g.dy, g.dx);
+  const double sloped = flat;  // cells and strips: where a slope is seen
   for (std::size_t k :
        {g.index(0, 0), g.index(g.nx - 1, 0), g.index(0, g.ny - 1), g.index(g.nx - 1, g.ny - 1)})
     if (ok(k)) flat += 0.25 * g.dx * g.dy;  // corner quarters, flat
-  return {flat > 0 ? 100.0 * excess / flat : 0.0, flat};
+  return {flat > 0 ? 100.0 * excess / flat : 0.0, sloped};
 }
 }  // namespace
 

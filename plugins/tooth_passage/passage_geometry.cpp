@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "phase_curvature.hpp"
+#include "topomill/interrupt.hpp"
 
 namespace topomill::plugins {
 
@@ -14,6 +15,8 @@ inline double norm(double x, double y) {
 }
 // Interpolated centres agree with the path to a nanometre's tenth: far below any grid.
 constexpr double kTableTolerance = 1e-7;  // mm
+// Windows tabulated between two looks at the stop flag, less one (a mask).
+constexpr std::size_t kWindowsPerStopCheck = 1023;
 }  // namespace
 
 namespace {
@@ -79,6 +82,8 @@ PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iter
   gap_lag = std::sqrt(1 + k1 * k1);
   std::shared_ptr<const CorrectionIndex> index;  // the pass's, shared by its windows
   for (const Window& win : window) {
+    // Hundreds of thousands of windows take seconds to tabulate: a stop request is looked at.
+    if (stop && (centre.size() & kWindowsPerStopCheck) == 0 && stop->load()) throw Interrupted();
     const std::size_t p = win.pass;
     if (!index || win.t_lo == 0)
       index = std::make_shared<const CorrectionIndex>(path->correction_samples(p));

@@ -101,6 +101,13 @@ TEST_CASE("a CL feed far outside any cut is refused at its line", "[cl][hostile]
   }
 }
 
+TEST_CASE("a CL point far beyond any part is refused at its own line", "[cl][hostile]") {
+  // Issue 43: a point at y = 1e308 was reported as another point.
+  const Case c("far");
+  c.write("far.csv", "x,y,z\n0,1e308,4.98\n0,0.92,4.98\n");
+  c.refused(scene("far.csv"), {"far.csv:2:1: error: key 'path.file': the point lies 1e+308 mm"});
+}
+
 TEST_CASE("a CL file must be a regular file, read within a bound", "[cl][hostile]") {
   // Issue 43: a FIFO blocked until signalled; /dev/zero was read for 256 MiB before the refusal.
   const Case c("special");

@@ -17,15 +17,7 @@ using namespace topomill;
 namespace fs = std::filesystem;
 
 namespace {
-// The paper's lambda = 30 deg residual map (fz 0.1, ae 0.3 mm).
-Surface paper_surface(double size, double spacing) {
-  Surface s;
-  s.map = testing::run_scene(testing::paper_scene("plugin = 'convex_arc'\nradius = 50.0", 30.0,
-                                                  size, size, spacing))
-              .residual;
-  s.source = "paper lambda 30";
-  return s;
-}
+using testing::paper_surface;
 
 // `s` with `share` of its points marked missing, at random (a fixed seed).
 Surface with_dropouts(Surface s, double share, unsigned seed) {

@@ -17,15 +17,7 @@ using namespace topomill;
 namespace fs = std::filesystem;
 
 namespace {
-// The paper's lambda = 30 deg surface (fz 0.1, ae 0.3 mm): its residual map.
-Surface paper_surface(double size, double spacing) {
-  Surface s;
-  s.map = testing::run_scene(testing::paper_scene("plugin = 'convex_arc'\nradius = 50.0", 30.0,
-                                                  size, size, spacing))
-              .residual;
-  s.source = "paper lambda 30";
-  return s;
-}
+using testing::paper_surface;
 
 // The test's own height between nodes: bilinear (not the code's cubic).
 double bilinear(const HeightMap& m, double x, double y) {

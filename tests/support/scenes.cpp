@@ -40,4 +40,12 @@ topomill::RunResult run_scene(const std::string& toml, const std::vector<std::st
   return topomill::run_pipeline(scene, catalog, options);
 }
 
+topomill::Surface paper_surface(double size, double spacing) {
+  topomill::Surface s;
+  s.map = run_scene(paper_scene("plugin = 'convex_arc'\nradius = 50.0", 30.0, size, size, spacing))
+              .residual;
+  s.source = "paper lambda 30";
+  return s;
+}
+
 }  // namespace testing

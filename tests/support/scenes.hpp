@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "metrology/surface.hpp"
 #include "pipeline.hpp"
 
 namespace testing {
@@ -11,6 +12,10 @@ namespace testing {
 // The paper's tool and cutting conditions on `workpiece` (the [workpiece] table's body).
 std::string paper_scene(const std::string& workpiece, double lambda_deg, double size_x,
                         double size_s, double spacing);
+
+// The residual map of the paper's lambda = 30 deg scene on the convex arc (fz 0.1, ae 0.3 mm),
+// `size` mm square at `spacing`, as a surface to measure or compare.
+topomill::Surface paper_surface(double size, double spacing);
 
 // Vibration (two modes) and deflection with the armarego force: tables to append to a scene.
 std::string dynamics_tables();

@@ -1,6 +1,8 @@
 #include "io/csv.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -10,6 +12,18 @@
 #include "topomill/error.hpp"
 
 namespace topomill {
+
+namespace {
+// `word`, all of it, as a finite number; denormals (which strtod flags as a range error, and
+// std::stod refused as "not finite") are numbers like any other.
+bool whole_finite_number(const std::string& word, double& v) {
+  if (word.empty()) return false;
+  char* end = nullptr;
+  errno = 0;
+  v = std::strtod(word.c_str(), &end);
+  return end == word.c_str() + word.size() && std::isfinite(v);
+}
+}  // namespace
 
 Surface read_csv(const std::string& path, double spacing) {
   // Each value takes two bytes at least (a digit and a separator).
@@ -29,14 +43,9 @@ Surface read_csv(const std::string& path, double spacing) {
       std::string key, eq, value;
       if (h >> key >> eq >> value && eq == "=" &&
           (key == "x0_mm" || key == "y0_mm" || key == "dx_mm" || key == "dy_mm")) {
-        std::size_t used = 0;
         double v = NAN;
-        try {
-          v = std::stod(value, &used);
-        } catch (...) {
-        }
         const bool step = key[0] == 'd';
-        if (used != value.size() || !std::isfinite(v) || (step && !(v > 0)) || std::abs(v) > 1e6)
+        if (!whole_finite_number(value, v) || (step && !(v > 0)) || std::abs(v) > 1e6)
           throw InputError(SourceRef{path, line_no, 1}, key,
                            "expected " +
                                std::string(step ? "a spacing above 0" : "a finite coordinate") +
@@ -56,14 +65,8 @@ Surface read_csv(const std::string& path, double spacing) {
       const auto last = cell.find_last_not_of(" \t\r");
       const std::string word =
           first == std::string::npos ? std::string() : cell.substr(first, last - first + 1);
-      std::size_t used = 0;
       double v = 0;
-      try {
-        v = std::stod(word, &used);
-      } catch (...) {
-        used = 0;
-      }
-      if (used == 0 || used != word.size() || !std::isfinite(v)) {
+      if (!whole_finite_number(word, v)) {
         std::string hint;
         if (word.find_first_of(";\t ") != std::string::npos)
           hint = " (cells are separated by commas; this one holds ';', a tab or a space)";

@@ -41,12 +41,12 @@ struct Fd {
     if (fd >= 0) close(fd);
   }
 };
-}  // namespace
 
-std::uint64_t regular_file_size(const std::string& path, std::uint64_t max_bytes,
-                                const std::string& what) {
-  struct stat st {};
-  if (stat(path.c_str(), &st) != 0)
+// The size of the file `st` describes, which must be a regular file of at most `max_bytes`
+// (`status` is stat's or fstat's return; errno tells why it failed).
+std::uint64_t checked_size(int status, const struct stat& st, const std::string& path,
+                           std::uint64_t max_bytes, const std::string& what) {
+  if (status != 0)
     throw InputError(SourceRef{path}, "",
                      std::string("cannot read the file: ") + std::strerror(errno));
   if (!S_ISREG(st.st_mode))
@@ -59,6 +59,14 @@ std::uint64_t regular_file_size(const std::string& path, std::uint64_t max_bytes
                          what);
   return size;
 }
+}  // namespace
+
+std::uint64_t regular_file_size(const std::string& path, std::uint64_t max_bytes,
+                                const std::string& what) {
+  struct stat st {};
+  const int status = stat(path.c_str(), &st);
+  return checked_size(status, st, path, max_bytes, what);
+}
 
 std::string read_file_bounded(const std::string& path, std::uint64_t max_bytes,
                               const std::string& what) {
@@ -69,17 +77,8 @@ std::string read_file_bounded(const std::string& path, std::uint64_t max_bytes,
     throw InputError(SourceRef{path}, "",
                      std::string("cannot read the file: ") + std::strerror(errno));
   struct stat st {};
-  if (fstat(file.fd, &st) != 0)
-    throw InputError(SourceRef{path}, "",
-                     std::string("cannot read the file: ") + std::strerror(errno));
-  if (!S_ISREG(st.st_mode))
-    throw InputError(SourceRef{path}, "", kind_of(st.st_mode) + ": expected " + what);
-  const auto size = static_cast<std::uint64_t>(st.st_size);
-  if (size > max_bytes)
-    throw InputError(SourceRef{path}, "",
-                     "the file is " + format_bytes(static_cast<double>(size)) + ", more than the " +
-                         format_bytes(static_cast<double>(max_bytes)) + " allowed: expected " +
-                         what);
+  const int status = fstat(file.fd, &st);
+  const std::uint64_t size = checked_size(status, st, path, max_bytes, what);
   // Exactly as many bytes as its size said (a file that grows meanwhile is read to that size,
   // one that shrinks to its end), a chunk at a time.
   std::string bytes(size, '\0');

@@ -5,6 +5,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "topomill/interrupt.hpp"
+
 namespace topomill {
 
 namespace {
@@ -34,6 +36,7 @@ static_assert(sizeof(std::complex<double>) == sizeof(fftw_complex),
 std::vector<std::complex<double>> fft_forward(const std::vector<double>& field, std::size_t nx,
                                               std::size_t ny) {
   if (field.size() != nx * ny) throw std::invalid_argument("fft_forward: size is not nx ny");
+  throw_if_interrupted();         // between transforms: one is not interrupted (FFTW has no hook)
   std::vector<double> in(field);  // the planner takes a writable array
   std::vector<std::complex<double>> out(ny * (nx / 2 + 1));
   fftw_plan p;
@@ -51,6 +54,7 @@ std::vector<double> fft_inverse(const std::vector<std::complex<double>>& half, s
                                 std::size_t ny) {
   if (half.size() != ny * (nx / 2 + 1))
     throw std::invalid_argument("fft_inverse: size is not ny (nx / 2 + 1)");
+  throw_if_interrupted();
   std::vector<std::complex<double>> in(half);  // the c2r transform overwrites its input
   std::vector<double> out(nx * ny);
   fftw_plan p;
@@ -67,6 +71,7 @@ std::vector<double> fft_inverse(const std::vector<std::complex<double>>& half, s
 std::vector<std::complex<double>> fft_rows(const std::vector<double>& rows_data, std::size_t n,
                                            std::size_t rows) {
   if (rows_data.size() != n * rows) throw std::invalid_argument("fft_rows: size is not n rows");
+  throw_if_interrupted();
   std::vector<double> in(rows_data);
   const std::size_t m = n / 2 + 1;
   std::vector<std::complex<double>> out(rows * m);
