@@ -74,8 +74,21 @@ static void check_posture(const ToolPath& path, Layout& L, const SlotTable& slot
   }
 }
 
-// A pass of cutter-location data, checked point by point against what the core can follow: each
-// named by its file and line.
+// What laying `steps` passes out holds, estimated before any pass is laid out, against the
+// memory there is (a step-over of 21 nm on a 0.1 mm patch laid out 4.8e6 passes, 2.1 GB and tens
+// of seconds, before the memory check after the layout refused them).
+static void check_layout_memory(double steps, double ae, const Params& cut) {
+  const double layout_bytes = (steps + kPassesBeyond) * kLayoutBytesPerPass;
+  const double available = static_cast<double>(available_memory());
+  if (layout_bytes > 0.9 * available)
+    throw InputError(cut.where("stepover"), "cutting.stepover",
+                     "the patch would need about " + format_count(steps) +
+                         " passes at a step-over of " + format_number(ae) +
+                         " mm, whose layout alone needs about " + format_bytes(layout_bytes) +
+                         ", and " + format_bytes(available) +
+                         " are available: raise cutting.stepover or shrink region.size");
+}
+
 // The feed rates cutter-location data may give, from the scene's feed per tooth fz at feed
 // speed vf: a tooth's feed from kMinFeedPerTooth (as cutting.feed_per_tooth: below it the spindle
 // angle's rounding moves the edge by nanometres, and a pass lasts for ever) to the ball's
@@ -84,6 +97,8 @@ struct FeedLimits {
   double lo, hi;  // mm/s
 };
 
+// A pass of cutter-location data, checked point by point against what the core can follow: each
+// named by its file and line.
 template <class Defect>
 static ToolPath::Pass waypoint_pass(const PassLine& l, const FeedLimits& feed,
                                     const Defect& defect) {
@@ -136,8 +151,8 @@ struct Reach {
 // given axis, or the vertical), named by file and line, for the scene's depth or the point's own
 // if deeper (a centre below the surface puts the ball's equator in the material); the steepest
 // contact (lambda_max); and some point near the patch within the ball's reach of the surface (a
-// path that never touches the part left a flat map: data in inches read as mm, tips read as
-// centres, passes above the part).
+// path that never touches the part left a flat map: centres read as tips, passes above the
+// part).
 static void check_waypoints(const ToolPath& path, const std::vector<PassLine>& lines,
                             const Reach& reach, double R, Layout& L) {
   const SurfaceShape& surface = path.surface();
@@ -190,8 +205,8 @@ static void check_waypoints(const ToolPath& path, const std::vector<PassLine>& l
                          format_number(lowest - R) + " mm more than the ball radius " +
                          format_number(R) +
                          " mm, so the map would be the uncut surface; expected centres less than "
-                         "a ball radius from the surface (data in inches read as mm? tool tips "
-                         "read as centres, or centres as tips: see path.point?)");
+                         "a ball radius from the surface (passes above the part? centres read as "
+                         "tips: see path.point)");
 }
 
 Layout make_layout(const Scene& scene, const ToolGeometry& tool,
@@ -338,18 +353,7 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
                          format_number(ae) +
                          " mm: expected fewer than 1e7 (shrink region.size or raise "
                          "cutting.stepover)");
-  // What laying the passes out holds, estimated before any pass is laid out (a step-over of
-  // 21 nm on a 0.1 mm patch laid out 4.8e6 passes, 2.1 GB and tens of seconds, before the
-  // memory check after the layout refused them).
-  const double layout_bytes = (steps + kPassesBeyond) * kLayoutBytesPerPass;
-  const double available = static_cast<double>(available_memory());
-  if (layout_bytes > 0.9 * available)
-    throw InputError(cut.where("stepover"), "cutting.stepover",
-                     "the patch would need about " + format_count(steps) +
-                         " passes at a step-over of " + format_number(ae) +
-                         " mm, whose layout alone needs about " + format_bytes(layout_bytes) +
-                         ", and " + format_bytes(available) +
-                         " are available: raise cutting.stepover or shrink region.size");
+  check_layout_memory(steps, ae, cut);
   PathRequest rq;
   rq.surface = surface.get();
   rq.stepover = ae, rq.feed_speed = vf, rq.run = run;
