@@ -83,8 +83,8 @@ Comparison compare_surfaces(const Surface& sim_in, const Surface& meas_in,
   if (flat_s || flat_m)
     throw InputError(flat_s ? SourceRef{sim_in.source} : where, "",
                      "the map is flat after processing: expected a surface with relief");
-  // The registration correlates products of heights: beyond kLargestHeight they overflow (1e300
-  // mm was called "maps of different places").
+  // The registration correlates products of heights: beyond kLargestHeight they overflow, and
+  // at 1e300 mm the search would find no overlap and call the maps different places.
   for (const auto& [r, source] : {std::pair{&rs, &sim_in.source}, std::pair{&rm, &meas_in.source}})
     if (!(top(*r) < kLargestHeight))
       throw InputError(SourceRef{*source}, "",

@@ -75,8 +75,8 @@ static void check_posture(const ToolPath& path, Layout& L, const SlotTable& slot
 }
 
 // What laying `steps` passes out holds, estimated before any pass is laid out, against the
-// memory there is (a step-over of 21 nm on a 0.1 mm patch laid out 4.8e6 passes, 2.1 GB and tens
-// of seconds, before the memory check after the layout refused them).
+// memory there is: a step-over of 21 nm on a 0.1 mm patch is 4.8e6 passes, 2.1 GB and tens of
+// seconds to lay out, too late for the memory check after the layout.
 static void check_layout_memory(double steps, double ae, const Params& cut) {
   const double layout_bytes = (steps + kPassesBeyond) * kLayoutBytesPerPass;
   const double available = static_cast<double>(available_memory());
@@ -116,8 +116,8 @@ static ToolPath::Pass waypoint_pass(const PassLine& l, const FeedLimits& feed,
     if (!w.centre.allFinite() || !w.axis.allFinite() || !std::isfinite(w.speed))
       throw defect("read a point that is not finite");
     if (std::abs(w.axis.norm() - 1) > 1e-9) throw defect("read an axis that is not a unit vector");
-    // Far points overflow the path's lengths and times, and the refusal then fell on another
-    // point (a y of 1e308 mm was reported at the next line).
+    // Far points overflow the path's lengths and times, and a later check would then name
+    // another point (a y of 1e308 mm, the next line).
     if (!(w.centre.cwiseAbs().maxCoeff() <= kLargestCoordinate))
       throw refuse("the point lies " + format_number(w.centre.cwiseAbs().maxCoeff()) +
                    " mm from the origin along an axis: expected coordinates of a part, within " +

@@ -127,7 +127,7 @@ Roughness roughness(const HeightMap& map, const std::vector<std::uint8_t>& valid
     top = std::max(top, std::abs(z[i]));
   }
   // The moments of the deviations in units of a power of two near the largest one, so that
-  // neither denormal heights (whose squares vanish: Sq was 0 below Sa) nor huge ones (whose
+  // neither denormal heights (whose squares vanish: Sq would be 0 below Sa) nor huge ones (whose
   // fourth powers overflow) lose them; scaling by a power of two is exact, so the values are
   // those of the unscaled sums wherever those neither underflow nor overflow.
   int exponent = 0;

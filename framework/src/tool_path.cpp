@@ -25,7 +25,8 @@ ToolPath::ToolPath(std::shared_ptr<const SurfaceShape> surface, double offset, d
     if (!passes_[p].waypoints.empty()) set_waypoint_pass(p);
     Pass& pass = passes_[p];
     // The phase matters only modulo a turn, and the evaluators' walks count turns from it: kept
-    // within one (a start_angle of 1e300 deg made tooth_passage index turns past any integer).
+    // within one (at a start_angle of 1e300 deg tooth_passage would index turns past any
+    // integer).
     // fmod is exact and leaves a phase within a turn as it was.
     pass.phase = std::fmod(pass.phase, 2 * M_PI);
     // Along the normal the axis turns only where the normal does: over the curvature (a pass

@@ -70,8 +70,8 @@ struct Case {
 
 TEST_CASE("CL data that never reaches the part is refused, naming the file and line",
           "[cl][hostile]") {
-  // Issue 43: passes 1 mm above the part, or centre data read as tips, gave a flat map (Sa
-  // 6e-13 um) with exit 0.
+  // Passes 1 mm above the part, or centre data read as tips, would give a flat map (Sa 6e-13 um)
+  // with exit 0.
   const Case c("above");
   c.write("above.csv", raster(5.98));
   c.refused(scene("above.csv"), {"above.csv:2:1: error: key 'path.file'", "never touches"});
@@ -80,8 +80,8 @@ TEST_CASE("CL data that never reaches the part is refused, naming the file and l
 }
 
 TEST_CASE("CL centres inside the part are refused: the ball's equator would cut", "[cl][hostile]") {
-  // Issue 43: a centre 1 mm below the surface was accepted, though the README promises a
-  // refusal; tips read as centres put every centre below it too.
+  // A centre 1 mm below the surface, which the README promises to refuse; tips read as centres
+  // put every centre below it too.
   const Case c("below");
   c.write("below.csv", raster(-1.0));
   c.refused(scene("below.csv"), {"below.csv:2:1: error: key 'path.file'", "1 mm below"});
@@ -90,8 +90,8 @@ TEST_CASE("CL centres inside the part are refused: the ball's equator would cut"
 }
 
 TEST_CASE("a CL feed far outside any cut is refused at its line", "[cl][hostile]") {
-  // Issue 43: 1e-300 mm/min ran on for ever, ignoring SIGTERM, without the long-run warning;
-  // 1e300 ended in "internal error" (exit 1).
+  // 1e-300 mm/min would run on for ever without the long-run warning; 1e300 would overflow the
+  // times ("internal error", exit 1).
   const Case c("feed");
   for (const std::string feed : {"1e-300", "1e300"}) {
     INFO(feed);
@@ -102,14 +102,14 @@ TEST_CASE("a CL feed far outside any cut is refused at its line", "[cl][hostile]
 }
 
 TEST_CASE("a CL point far beyond any part is refused at its own line", "[cl][hostile]") {
-  // Issue 43: a point at y = 1e308 was reported as another point.
+  // A point at y = 1e308 overflows the path's lengths: refused before they are formed.
   const Case c("far");
   c.write("far.csv", "x,y,z\n0,1e308,4.98\n0,0.92,4.98\n");
   c.refused(scene("far.csv"), {"far.csv:2:1: error: key 'path.file': the point lies 1e+308 mm"});
 }
 
 TEST_CASE("a CL file must be a regular file, read within a bound", "[cl][hostile]") {
-  // Issue 43: a FIFO blocked until signalled; /dev/zero was read for 256 MiB before the refusal.
+  // A FIFO would block the reader until signalled; /dev/zero would be read for 256 MiB.
   const Case c("special");
   const std::string fifo = c.dir + "/fifo.csv";
   REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
@@ -119,7 +119,7 @@ TEST_CASE("a CL file must be a regular file, read within a bound", "[cl][hostile
 }
 
 TEST_CASE("a file that is no CL data keeps its content out of the refusal", "[cl][hostile]") {
-  // Issue 43: a scene from elsewhere could name any file and have its first line echoed back.
+  // A scene from elsewhere may name any file: its first line must not come back in the refusal.
   const Case c("disclosure");
   c.write("secret.txt", "root:secret-hash-1234:0:0:root\nmore:secret:lines\n");
   for (const char* format : {"csv", "apt"}) {

@@ -43,9 +43,9 @@ double value(const ParameterValues& v, const std::string& name) {
 }  // namespace
 
 TEST_CASE("compare keeps a measurement's points around its scattered dropouts", "[compare]") {
-  // Issue 43: a point counted only where all 16 of its cubic's nodes were valid, so 10 % of
-  // points missing left 15.7 % overlap and Sa 13 % off, and 30 % missing made a copy of the
-  // same surface "maps of different places".
+  // Counting a point only where all 16 of its cubic's nodes are valid leaves 15.7 % overlap with
+  // 10 % of the points missing (Sa 13 % off), and with 30 % calls a copy of the same surface
+  // "maps of different places".
   const Surface sim = paper_surface(0.4, 0.004);
   for (const double share : {0.1, 0.3}) {
     INFO(share * 100 << " % missing");
@@ -93,8 +93,8 @@ TEST_CASE("between nodes a dropout costs the cells that touch it, exactly interp
 }
 
 TEST_CASE("compare takes a run's directory only once its run is sealed", "[compare][cli]") {
-  // Issue 43: a directory without summary.json (a run stopped, failed or still writing) was
-  // taken as the simulation.
+  // A directory without summary.json (a run stopped, failed or still writing) holds no finished
+  // run to compare.
   const std::string dir = testing::temp_dir("compare_unsealed");
   fs::create_directories(dir);
   const Surface sim = paper_surface(0.2, 0.005);
@@ -108,7 +108,7 @@ TEST_CASE("compare takes a run's directory only once its run is sealed", "[compa
 
 TEST_CASE("compare gives huge heights finite numbers, or refuses them naming the file",
           "[compare][cli]") {
-  // Issue 43: heights of 1e100 um printed -nan (Sku's fourth powers overflowed).
+  // Heights of 1e100 um overflow Sku's fourth powers unless scaled (-nan was printed).
   const std::string dir = testing::temp_dir("compare_huge");
   fs::create_directories(dir);
   const Surface sim = paper_surface(0.2, 0.005);

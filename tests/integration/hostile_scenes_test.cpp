@@ -1,5 +1,5 @@
 // Scenes and maps a careless user gives, whose cost or whose parameters the estimates and the
-// report used to get wrong: every stage asked for is in the memory estimate, before anything is
+// report can get wrong: every stage asked for is in the memory estimate, before anything is
 // laid out; the time estimate counts the cores there are; a parameter undefined for a map is
 // said to be, not printed as a number.
 #include <catch2/catch.hpp>
@@ -19,8 +19,8 @@ const std::string kQuick = "configs/examples/quick.toml";
 
 TEST_CASE("a step-over too fine for memory is refused before any pass is laid out",
           "[hostile][resources]") {
-  // Issue 43: 1e-7 mm (8.6 M passes) ended in bad_alloc at 2 GB; 2.1e-8 mm spent 18-26 s and
-  // 2.1 GB laying out passes before the refusal, `check` included.
+  // 1e-7 mm (8.6 M passes) would end in bad_alloc at 2 GB; 2.1e-8 mm would spend 18-26 s and
+  // 2.1 GB laying out passes before a refusal after the layout, `check` included.
   for (const std::string set : {"--set cutting.stepover=1e-7",
                                 "--set cutting.stepover=2.1e-8 --set path.plugin=raster_across "
                                 "--set region.size=[0.1,0.1]"}) {
@@ -38,8 +38,8 @@ TEST_CASE("a step-over too fine for memory is refused before any pass is laid ou
 }
 
 TEST_CASE("the memory estimate includes the parameters asked for", "[hostile][resources]") {
-  // Issue 43: analysis.parameters = ["all"] peaked at 440 MiB against a 200 MiB limit: the
-  // autocorrelation's fields were left out of the estimate.
+  // analysis.parameters = ["all"] peaks at 440 MiB where the estimate without the
+  // autocorrelation's fields says 200 MiB fits.
   const std::string fine = "check " + kQuick + " -q --set region.spacing=0.0005";
   const std::string limit = "TOPOMILL_MEMORY_LIMIT=60M";
   CHECK(testing::run_topomill(fine, limit).exit_code == 0);
@@ -51,8 +51,8 @@ TEST_CASE("the memory estimate includes the parameters asked for", "[hostile][re
 
 TEST_CASE("the long-run warning counts the cores, not the threads asked for",
           "[hostile][resources]") {
-  // Issue 43: with --threads 256 on 2 cores the estimate was divided by 256 and the warning of
-  // a run of hours disappeared. A 0.86 mm patch at 12 nm: 5e9 nodes, hours on any machine.
+  // With --threads 256 on 2 cores an estimate divided by 256 hides the warning of a run of
+  // hours. A 0.86 mm patch at 12 nm: 5e9 nodes, hours on any machine.
   const std::string huge = "check configs/paper/lambda30.toml -q --set region.spacing=0.000012";
   const std::string limit = "TOPOMILL_MEMORY_LIMIT=100000G";  // the memory check passes
   const auto one = testing::run_topomill(huge + " --threads 1", limit);
@@ -66,7 +66,7 @@ TEST_CASE("the long-run warning counts the cores, not the threads asked for",
 }
 
 TEST_CASE("parameters undefined for a map are said to be, with why", "[hostile][metrology]") {
-  // Issue 43: Sdq and Sdr printed 0 with no valid neighbours, Ssk and Sku 1 on a flat map, and
+  // Not 0 for Sdq and Sdr without valid neighbours, nor 1 for Ssk and Sku on a level map, nor
   // Sq 0 below Sa on denormal heights.
   const std::string dir = testing::temp_dir("undefined_parameters");
   fs::create_directories(dir);

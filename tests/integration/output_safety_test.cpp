@@ -40,7 +40,7 @@ std::string map_file() {
 
 TEST_CASE("a link or a hard link planted at the lock is refused, its target untouched",
           "[safety]") {
-  // Issue 43: OUT/.lock planted as a link to another file got the run's pid written into it.
+  // OUT/.lock planted as a link to another file must not get the run's pid written into it.
   const std::string dir = fresh("planted_lock");
   fs::create_symlink(dir + "/victim.txt", dir + "/out/.lock");
   auto r = testing::run_topomill("run " + kQuick + " -q --out " + dir + "/out");
@@ -58,8 +58,8 @@ TEST_CASE("a link or a hard link planted at the lock is refused, its target unto
 
 TEST_CASE("links planted at staging and output names are replaced, never written through",
           "[safety]") {
-  // Issue 43: OUT/summary.json.partial and measure's NAME.partial planted as links were
-  // followed, and the run wrote its summary or map into the file they pointed to.
+  // Links planted at OUT/summary.json.partial and measure's NAME.partial (the fixed staging
+  // names once used) and at the staging names used now must not be followed.
   const std::string dir = fresh("planted_staging");
   const std::string victim = dir + "/victim.txt";
   for (const char* name : {"summary.json.partial", ".incomplete", "height_raw.csv",
@@ -89,7 +89,7 @@ TEST_CASE("links planted at staging and output names are replaced, never written
 }
 
 TEST_CASE("a place that cannot be written is bad input naming the option", "[safety]") {
-  // Issue 43: read-only targets and a directory in the way ended in "internal error" (exit 1).
+  // Read-only targets and a directory in the way are the user's choice: exit 2, not 1.
   const std::string dir = fresh("unwritable");
   fs::create_directories(dir + "/a_directory.csv");
   for (const std::string& out :
@@ -106,8 +106,8 @@ TEST_CASE("a place that cannot be written is bad input naming the option", "[saf
 }
 
 TEST_CASE("two measures writing one file leave one whole result", "[safety]") {
-  // Issue 43: two `measure --out` to one file shared one staging name: one exited 1 in 2 of 6
-  // trials, and once the file matched neither result.
+  // With one fixed staging name, one of two writers would fail in some trials and the file could
+  // match neither result.
   const std::string dir = fresh("two_writers");
   const std::string a = dir + "/a.csv", b = dir + "/b.csv", both = dir + "/both.csv";
   REQUIRE(testing::run_topomill("measure " + map_file() + " --form plane --out " + a).exit_code ==

@@ -117,8 +117,8 @@ TEST_CASE("CL reader: damaged files are refused at their line and column", "[cl]
       Case{cl::Format::Apt, "GOTO/0,0,0\nCIRCLE/0,0,0,0,0,1,5\n",
            "2:1: CIRCLE is not a statement topomill follows"},
       Case{cl::Format::Apt, "CUTCOM/LEFT\n", "1:1: CUTCOM is not a statement"},
-      // A file that is no CL data keeps its content out of the message (issue 43: a scene from
-      // elsewhere could name any file and read its first line back in the refusal).
+      // A file that is no CL data keeps its content out of the message (a scene from elsewhere
+      // may name any file).
       Case{cl::Format::Apt, "root:secret-hash:0:0\n", "1:1: this is not a statement topomill"},
       Case{cl::Format::Csv, "root:secret-hash:0:0\n", "1:1: column 1 of the header is not a name"},
       Case{cl::Format::Apt, "FEDRAT/MMPM\n", "1:8: FEDRAT without a rate above 0"},

@@ -62,8 +62,8 @@ void stopped(const std::vector<std::string>& args, const std::string& out, doubl
 }  // namespace
 
 TEST_CASE("measure stops on a signal at any stage and writes nothing", "[stability][kill]") {
-  // Issue 43: measure finished, wrote everything and exited 0 after Ctrl-C or SIGTERM; writing a
-  // large x3p went on for minutes after SIGTERM.
+  // Not: finish, write everything and exit 0 after Ctrl-C or SIGTERM; nor go on writing a large
+  // x3p for minutes.
   const std::string map = big_map();
   const std::string out = fs::path(map).parent_path() / "measured.x3p";
   int finished_early = 0;

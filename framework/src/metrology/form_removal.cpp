@@ -84,7 +84,7 @@ Surface remove_polynomial(const Surface& in, int order) {
   // Least squares by QR a block of rows at a time (TSQR): each block's rows are stacked under the
   // R and Q^T b of the blocks before and reduced again. Orthogonal throughout, as one QR of the
   // whole is, in memory for a block, and a stop request is honoured between blocks (one QR of
-  // 5.8 M rows took 2 s).
+  // 5.8 M rows takes 2 s).
   const auto t = static_cast<Eigen::Index>(terms.size());
   const auto block = static_cast<Eigen::Index>(std::min(n, kRowsPerBlock));
   Eigen::MatrixXd R(0, t), A(block, t);
