@@ -123,7 +123,7 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
   }
   const EvaluationCost cost = evaluation_cost(out, threads);
   check_memory(scene, out, cost, threads, available_memory());
-  check_duration(scene, cost, threads);
+  check_duration(scene, out, cost, threads);
   return out;
 }
 

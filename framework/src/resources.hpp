@@ -43,9 +43,14 @@ EvaluationCost evaluation_cost(const Prepared& m, unsigned threads);
 void check_memory(const Scene& scene, const Prepared& m, const EvaluationCost& cost,
                   unsigned threads, std::uint64_t available);
 
-// Before a run the evaluator estimates to take over a minute, a warning with the estimate and the
-// key that drives it; one that would not end (over three years) is refused naming that key.
-void check_duration(const Scene& scene, const EvaluationCost& cost, unsigned threads);
+// Seconds the stages after the evaluation take (form removal, parameters, writing), on one thread.
+double finishing_seconds(const Scene& scene, const Prepared& m);
+
+// Before a run estimated at over a minute (the evaluator's estimate on the cores there are, and
+// the stages after it), a warning with the estimate and the key that drives it; one that would
+// not end (over three years) is refused naming that key.
+void check_duration(const Scene& scene, const Prepared& m, const EvaluationCost& cost,
+                    unsigned threads);
 
 std::string format_bytes(double bytes);
 

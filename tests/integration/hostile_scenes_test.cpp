@@ -65,6 +65,19 @@ TEST_CASE("the long-run warning counts the cores, not the threads asked for",
   CHECK(many.err.find("on 256 thread(s)") == std::string::npos);
 }
 
+TEST_CASE("the long-run warning counts the stages after the evaluation", "[hostile][resources]") {
+  // 9 M nodes: evaluated in about 14 s on one thread, but an x3p of each map takes a minute more
+  // to write (6.4 us a node) and the default parameters, form removal and csv seconds.
+  const std::string fine = "check " + kQuick + " -q --set region.spacing=0.0001";
+  const auto x3p = testing::run_topomill(fine + " --set 'output.formats=[\"x3p\"]'");
+  const auto csv = testing::run_topomill(fine + " --set 'output.formats=[\"csv\"]'");
+  INFO(x3p.err << csv.err);
+  CHECK(x3p.exit_code == 0);
+  CHECK_THAT(x3p.err, Catch::Contains("estimates this run at about"));
+  CHECK_THAT(x3p.err, Catch::Contains("driven by region.spacing (the grid's form removal"));
+  CHECK(csv.err.find("estimates this run") == std::string::npos);
+}
+
 TEST_CASE("parameters undefined for a map are said to be, with why", "[hostile][metrology]") {
   // Not 0 for Sdq and Sdr without valid neighbours, nor 1 for Ssk and Sku on a level map, nor
   // Sq 0 below Sa on denormal heights.

@@ -45,6 +45,8 @@ std::vector<std::string> select_parameters(const std::vector<std::string>& words
 // autocorrelation's padded field and transforms (Sal, Str), the material ratio curve's sorted
 // heights (its family); the texture direction's spectrum is held within a fixed size.
 double parameter_bytes_per_point(const std::vector<std::string>& names);
+// And the seconds a point that computing them takes, on one thread.
+double parameter_seconds_per_point(const std::vector<std::string>& names);
 
 struct ParameterValues {
   std::vector<Roughness::Reported> reported;  // the selected, defined ones, in catalogue order
