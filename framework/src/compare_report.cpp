@@ -99,6 +99,8 @@ CompareReport write_compare_report(const std::string& dir_given, const Compariso
                      "cannot write beside '" + dir + "': " + std::strerror(errno) +
                          ": expected a directory you can write into");
   const fs::path stage = stage_name;
+  // mkdtemp makes it 0700; the report is shared as any directory the user makes.
+  fs::permissions(stage, static_cast<fs::perms>(0777 & ~process_umask()), ec);
   auto path = [&](const char* name) { return (stage / name).string(); };
   std::vector<std::string> files;
 

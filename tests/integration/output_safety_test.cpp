@@ -2,6 +2,7 @@
 // output, lock or staging file is opened through a link planted there, no file that is not the
 // run's own is truncated, a place that cannot be written is bad input (exit 2) naming the option,
 // and two writers of one file leave one whole result.
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -136,4 +137,23 @@ TEST_CASE("two measures writing one file leave one whole result", "[safety]") {
   }
   for (const auto& e : fs::directory_iterator(dir))
     CHECK(e.path().filename().string().find(".partial") == std::string::npos);
+}
+
+TEST_CASE("outputs get the modes the umask gives, as files a user makes", "[safety]") {
+  // Staging files (mkostemp: 0600) and directories (mkdtemp: 0700) are private while written;
+  // what is moved into place must be readable as the user's umask says.
+  const mode_t mask = umask(022);
+  umask(mask);
+  const std::string dir = fresh("modes");
+  REQUIRE(testing::run_topomill("run " + kQuick + " -q --out " + dir + "/out").exit_code == 0);
+  REQUIRE(testing::run_topomill("compare " + map_file() + " " + map_file() + " --out " + dir +
+                                "/report")
+              .exit_code == 0);
+  auto mode = [](const std::string& p) {
+    return static_cast<unsigned>(fs::status(p).permissions() & fs::perms::all);
+  };
+  CHECK(mode(dir + "/out/summary.json") == (0666u & ~mask));
+  CHECK(mode(dir + "/out/height_raw.csv") == (0666u & ~mask));
+  CHECK(mode(dir + "/report") == (0777u & ~mask));
+  CHECK(mode(dir + "/report/compare.json") == (0666u & ~mask));
 }

@@ -23,17 +23,9 @@ namespace {
 // Bytes gathered before each write(2), and so between two checks of the stop flag.
 constexpr std::size_t kFlushBytes = 1 << 16;
 
-// The mode a file created with 0666 gets under this process's umask (mkstemp gives 0600). Read
-// from /proc, not by setting and restoring the umask, which would let another thread create a
-// file meanwhile under a umask of 0.
+// The mode a file created with 0666 gets under this process's umask (mkstemp gives 0600).
 mode_t created_mode() {
-  static const mode_t mode = [] {
-    std::ifstream status("/proc/self/status");
-    for (std::string line; std::getline(status, line);)
-      if (line.rfind("Umask:", 0) == 0)
-        return static_cast<mode_t>(0666 & ~std::stoul(line.substr(6), nullptr, 8));
-    return static_cast<mode_t>(0644);  // the common umask 022, where /proc says nothing
-  }();
+  static const mode_t mode = static_cast<mode_t>(0666 & ~process_umask());
   return mode;
 }
 
@@ -105,6 +97,14 @@ class FdBuf : public std::streambuf {
 };
 
 }  // namespace
+
+unsigned process_umask() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("Umask:", 0) == 0)
+      return static_cast<unsigned>(std::stoul(line.substr(6), nullptr, 8));
+  return 022;
+}
 
 void write_atomically_to(const std::string& path,
                          const std::function<void(const std::string&)>& write) {

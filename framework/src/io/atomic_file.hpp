@@ -16,6 +16,10 @@ namespace topomill {
 // A staging file is named ".<target's name>" + kStagingSuffix + six random characters.
 inline constexpr const char* kStagingSuffix = ".partial.";
 
+// This process's umask, read from /proc/self/status (setting the umask to read it back would let
+// another thread create a file meanwhile under a umask of 0); 022 where /proc says nothing.
+unsigned process_umask();
+
 // Calls `write` with a stream on a new staging file beside `path`, then renames it to `path`. On
 // any failure the staging file is removed and an exception naming `path` is thrown; a stop
 // request while writing throws Interrupted.

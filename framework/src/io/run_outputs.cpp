@@ -88,9 +88,9 @@ void remove_stale_staging(const std::string& out_dir) {
 fs::path make_staging_dir(const std::string& out_dir) {
   std::string name = (fs::path(out_dir) / kStagingPrefix).string() + "XXXXXX";
   if (!mkdtemp(name.data()))
-    throw InputError(
-        SourceRef{"command line"}, "--out",
-        "cannot write into the output directory '" + out_dir + "': " + std::strerror(errno));
+    throw InputError(SourceRef{"command line"}, "--out",
+                     "cannot write into the output directory '" + out_dir + "': " +
+                         std::strerror(errno) + ": expected a directory you can write into");
   return name;
 }
 
