@@ -38,7 +38,7 @@
 // Measured on the paper's lambda 0 patch (0.3 mm at 1 um): 13.6 k zones, 11.7 k of them with two
 // turning points; a zone takes 5.7 evaluations of K for its turning points, a probe at each end
 // and turning point, and 3.2 evaluations and probes for each level solved (0.48 a zone), against
-// 7.9 pieces (a span and a probe each) by halving (docs/performance.md, session 27).
+// 7.9 pieces (a span and a probe each) by halving (docs/performance.md).
 #include <algorithm>
 #include <array>
 #include <cmath>
