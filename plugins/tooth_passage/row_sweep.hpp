@@ -43,7 +43,7 @@ class RowSweep {
     // (ahead()). Near the axis a crossing lies 0.05-0.2 mm from it, where the root's time bends
     // so fast along the row that the quadratic's guess was 1e-7 to 1e-5 rad off the phase (a
     // Newton step at nearly every crossing) and the quintic's mostly under 1e-9 (the tolerance:
-    // one probe); order 6 gained nothing more (session 25). Where the grid is coarse for the
+    // one probe); order 6 gains nothing more. Where the grid is coarse for the
     // root's bend the differences grow with the order instead of shrinking, and a high order
     // throws the guess far (at 20 um at lambda 0 onto other crossings, and the walk then solved
     // revolution after revolution exactly: 80 times the instructions), so ahead() adds an
