@@ -28,7 +28,7 @@ class ClFile : public PathModel {
                  "What the points locate: the ball's centre, or the tool's tip (the centre is R "
                  "along the axis from it)")
         .is_required();
-    PassPhase::add_keys(s);
+    PassPhase::add_keys(s, PassPhase::Anchor::first_point);
     return s;
   }
 

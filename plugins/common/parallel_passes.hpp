@@ -12,19 +12,32 @@
 namespace topomill::plugins {
 
 struct PassPhase {
-  double start = 0.0;  // the spindle angle when the first pass starts (rad)
+  double start = 0.0;  // the spindle angle as pass 0 starts (rad)
   double shift = 0.0;  // added for each pass after it (rad)
 
-  static void add_keys(Schema& s) {
-    s.add_number("start_angle", "Spindle angle of the first tooth when the first pass starts")
+  // Parallel passes count k on the workpiece (pass 0 through x = 0); CL data's passes count from
+  // the file's first.
+  enum class Anchor { workpiece, first_point };
+  static void add_keys(Schema& s, Anchor anchor = Anchor::workpiece) {
+    const bool workpiece = anchor == Anchor::workpiece;
+    s.add_number("start_angle",
+                 workpiece ? "Spindle angle of the first tooth as pass 0 starts (the pass through "
+                             "x = 0; feeding along X, the one through the patch's centre)"
+                           : "Spindle angle of the first tooth when the first pass starts")
         .with_unit("deg")
         .with_default(0.0);
-    s.add_number("phase_shift", "Spindle phase difference between adjacent passes (paper: 0)")
+    s.add_number("phase_shift", workpiece
+                                    ? "Spindle phase added per pass from pass 0: pass k starts at "
+                                      "start_angle + k phase_shift (paper: 0)"
+                                    : "Spindle phase difference between adjacent passes (paper: 0)")
         .with_unit("deg")
         .with_default(0.0);
   }
   explicit PassPhase(const Params& p)
       : start(p.number("start_angle") * M_PI / 180), shift(p.number("phase_shift") * M_PI / 180) {}
+
+  // Pass k's spindle angle as it starts, k counted on the workpiece (parallel_passes).
+  double at(long k) const { return start + static_cast<double>(k) * shift; }
 };
 
 // The tool's posture on every pass (docs/model.md, "Tool posture").
@@ -59,8 +72,9 @@ struct PassPosture {
 // step-over before the patch to one after, each running `run` past the patch at both ends; or
 // (across) feeding along X and stepping along the surface by the arc length ae, centred on the
 // patch's centre. Pass k (k = 0 through x = 0, or through the patch's centre across) feeds
-// backwards where reversed(k) says so: it starts at the far end. Pass phases count from the
-// first pass laid out, whichever way it feeds.
+// backwards where reversed(k) says so: it starts at the far end. Pass k starts at the spindle
+// angle start + k shift: counted from the pass through x = 0 (the workpiece's), not from the first
+// the patch lays out, so that a wider patch leaves the phases of the passes it shares alone.
 template <class Reversed>
 std::vector<PassLine> parallel_passes(const PathRequest& rq, bool across, const PassPhase& phase,
                                       const ToolPath::Posture& posture, Reversed reversed) {
@@ -77,11 +91,10 @@ std::vector<PassLine> parallel_passes(const PathRequest& rq, bool across, const 
     const double y_first = rq.y_lo - rq.run, y_last = rq.y_hi + rq.run;
     for (long k = k_lo; k <= k_hi && !((k & 4095) == 0 && rq.stopped()); ++k) {
       const double x = static_cast<double>(k) * ae;
-      const double angle = phase.start + static_cast<double>(k - k_lo) * phase.shift;
       if (reversed(k))
-        add(x, y_last, x, y_first, angle);
+        add(x, y_last, x, y_first, phase.at(k));
       else
-        add(x, y_first, x, y_last, angle);
+        add(x, y_first, x, y_last, phase.at(k));
     }
   } else {
     const long k_lo = static_cast<long>(std::floor((rq.s_lo - rq.s_c) / ae)) - 1;
@@ -91,11 +104,10 @@ std::vector<PassLine> parallel_passes(const PathRequest& rq, bool across, const 
     // Up to 1e7 bisections: many seconds, so a stop request is looked at.
     for (long k = k_lo; k <= k_hi && !((k & 1023) == 0 && rq.stopped()); ++k) {
       const double y = y_at_arc(*rq.surface, rq.s_c + static_cast<double>(k) * ae, rq.y_c, span_k);
-      const double angle = phase.start + static_cast<double>(k - k_lo) * phase.shift;
       if (reversed(k))
-        add(x_last, y, x_first, y, angle);
+        add(x_last, y, x_first, y, phase.at(k));
       else
-        add(x_first, y, x_last, y, angle);
+        add(x_first, y, x_last, y, phase.at(k));
     }
   }
   return passes;

@@ -254,6 +254,43 @@ TEST_CASE("CL data's own feed sets the chip: twice the scene's feed is the raste
   CHECK(largest_difference(raster.raw, cl.raw) < 1e-9);
 }
 
+TEST_CASE("a feed in inches per minute is 25.4 mm/min an inch, end to end", "[cl]") {
+  // The raster at 2 fz written as APT with its speed in FEDRAT, once in mm/min and once in in/min
+  // (1 in = 25.4 mm exactly), each read into a scene of fz: both are the raster at 2 fz. Left
+  // unconverted, IPM moves the tool 25.4 times slower: its marks 25.4 times closer.
+  const std::vector<std::string> twice{"cutting.feed_per_tooth=0.06"};
+  const std::string raster_scene = scene(kPlate, "plugin = 'raster'", 0.004, 0.1);
+  const auto m = prepared(raster_scene, twice);
+  const topomill::ToolPath& path = *m.layout.path;
+  const double mm_per_min = path.feed_speed() * 60;
+  auto write = [&](const std::string& name, const std::string& fedrat) {
+    const std::string file = cl_dir() + "/" + name + ".cl";
+    std::ofstream out(file);
+    out << "PARTNO/" << name << "\nUNITS/MM\n" << fedrat << "\n";
+    char buf[256];
+    for (std::size_t p = 0; p < path.passes(); ++p) {
+      out << "RAPID\n";
+      for (const double t : {0.0, path.pass(p).t_end}) {
+        const topomill::Vec3 c = spindle_centre(path, p, t);
+        std::snprintf(buf, sizeof buf, "GOTO/%.17g,%.17g,%.17g\n", c.x(), c.y(), c.z());
+        out << buf;
+      }
+    }
+    out << "FINI\n";
+    return file;
+  };
+  char rate[128];
+  std::snprintf(rate, sizeof rate, "FEDRAT/MMPM,%.17g", mm_per_min);
+  const std::string mmpm = write("feed_mmpm", rate);
+  std::snprintf(rate, sizeof rate, "FEDRAT/IPM,%.17g", mm_per_min / 25.4);
+  const std::string ipm = write("feed_ipm", rate);
+  const auto raster = run_scene(raster_scene, twice);
+  const auto in_mm = run_scene(scene(kPlate, cl_path(mmpm), 0.004, 0.1));
+  const auto in_inches = run_scene(scene(kPlate, cl_path(ipm), 0.004, 0.1));
+  CHECK(largest_difference(raster.raw, in_mm.raw) < 1e-9);
+  CHECK(largest_difference(in_mm.raw, in_inches.raw) < 1e-9);
+}
+
 // The raster turned by 30 deg in plan on a plate: parallel passes 0.7 mm long, a step-over
 // (0.06 mm) apart, zigzag, the middle one bending 0.2 mm sideways at its far end (their ends'
 // imprints, steep walls where the Z-map's nearest node errs by the wall's slope times half a

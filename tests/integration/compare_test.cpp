@@ -109,6 +109,54 @@ TEST_CASE("a map compared with itself differs by nothing", "[compare]") {
   }
 }
 
+TEST_CASE("compare takes a known height offset off the measurement", "[compare]") {
+  // The measurement is the simulation moved by whole nodes (the cubic is exact at nodes) and
+  // raised by 3.7 um: registration must find that offset, and the aligned measurement less it is
+  // the simulation again, node for node. Added instead of taken off, the difference is 7.4 um at
+  // every node; Sa about the difference's mean would not see it.
+  const Surface fine = paper_surface(0.86, 0.002);
+  const double h = 0.006, offset = 3.7e-3;  // mm
+  const Surface sim = sample(fine.map, 0.5, h, 0, 0, 0, 0, 1);
+  Surface meas = sample(fine.map, 0.5, h, 2 * h, -3 * h, 0, 0, 1);
+  for (double& z : meas.map.z) z += offset;
+  const Comparison c = compare_surfaces(sim, meas, defaults(false, 0.045));
+  CHECK(c.registration.tx == Approx(2 * h).margin(1e-9));
+  CHECK(c.registration.ty == Approx(-3 * h).margin(1e-9));
+  CHECK(c.registration.offset == Approx(offset).margin(1e-12));
+  std::size_t nodes = 0;
+  double largest = 0;
+  for (std::size_t k = 0; k < c.difference.map.z.size(); ++k)
+    if (c.difference.is_valid(k))
+      ++nodes, largest = std::max(largest, std::abs(c.difference.map.z[k]));
+  INFO("largest difference " << largest << " mm, offset found " << c.registration.offset);
+  CHECK(nodes > c.difference.map.z.size() / 2);
+  CHECK(largest < 1e-9);  // mm
+}
+
+TEST_CASE("a map compared with itself overlaps whole at any spacing", "[compare]") {
+  // A spacing with no exact binary form (a 5 um x3p increment read as 4.9999999999999521e-6 m)
+  // puts the registered far column an ulp past the last node: the sampler must take it as the
+  // node, not drop the column (overlap 0.9836 on 61 x 61).
+  for (const double dx : {4.9999999999999521e-3, 0.005, 0.0123456789, 1.0 / 3.0 * 1e-2, 7e-4}) {
+    Surface s;
+    Grid g;
+    g.nx = 61, g.ny = 47, g.dx = dx, g.dy = 1.37 * dx;
+    g.x0 = -0.3 * 61 * dx, g.y0 = 0.1 + 0.2 * dx;
+    s.map = HeightMap(g);
+    for (std::size_t j = 0; j < g.ny; ++j)
+      for (std::size_t i = 0; i < g.nx; ++i)
+        s.map.at(i, j) = 1e-3 * (std::sin(0.7 * static_cast<double>(i)) +
+                                 std::cos(0.45 * static_cast<double>(i + 2 * j)));
+    s.source = "self";
+    for (const bool rotation : {false, true}) {
+      const Comparison c = compare_surfaces(s, s, defaults(rotation, 0));
+      INFO("spacing " << dx << " mm, rotation " << rotation);
+      CHECK(c.overlap_share == 1.0);
+      CHECK(std::abs(c.registration.offset) < 1e-15);
+    }
+  }
+}
+
 TEST_CASE("the paper's lambda = 30 deg run beside a coarser run reports fz and ae", "[compare]") {
   // ae = 0.3 mm between passes along X. The teeth cut the same profile moved fz = 0.1 mm along
   // plan Y each time: their marks are fz apart in Y, so fz / cos(lambda) = 0.1155 mm apart along

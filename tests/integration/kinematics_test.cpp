@@ -16,14 +16,15 @@ namespace {
 
 // A flat plate under a vertical tool (the grid's rows are exactly `spacing` apart there), the
 // paper's feed and step-over, ap 0.1 mm.
-std::string plate(const std::string& direction, double helix, double start, double shift) {
+std::string plate(const std::string& direction, double helix, double start, double shift,
+                  const std::string& size = "[0.6, 0.3]") {
   std::ostringstream s;
   s << "[tool]\nplugin = 'ball_end_constant_lead'\nradius = 5.0\nteeth = 2\nhelix_angle = " << helix
     << "\n[workpiece]\nplugin = 'inclined_plane'\n"
     << "[cutting]\nspindle_speed = 4000\nfeed_per_tooth = 0.1\ndepth_of_cut = 0.1\n"
     << "stepover = 0.3\nspindle_direction = '" << direction << "'\n"
     << "[path]\nstart_angle = " << start << "\nphase_shift = " << shift << "\n"
-    << "[region]\nlambda = 0.0\nsize = [0.6, 0.3]\nspacing = 0.005\n";
+    << "[region]\nlambda = 0.0\nsize = " << size << "\nspacing = 0.005\n";
   return s.str();
 }
 
@@ -96,7 +97,9 @@ TEST_CASE("a start angle translates the surface along the feed by the distance i
 
 TEST_CASE("the phase shift between passes moves each pass's feed marks by its share",
           "[kinematics]") {
-  // Pass k + 1 starts 45 deg further on than pass k: its marks move 5 rows more. Columns 0.05 mm
+  // Pass k (through x = 0.3 k) starts 45 k deg further on than with no shift: its marks move 5 k
+  // rows, k counted from the pass through x = 0 (the workpiece's, not from the first the patch
+  // lays out: that one, k = -2, would be unshifted, and pass 0 moved 10 rows). Columns 0.05 mm
   // beside a pass are cut by that pass alone (the next one is 6 um higher there).
   const std::string direction = GENERATE(as<std::string>{}, "cw", "ccw");
   const std::vector<std::string> o{"evaluator.plugin=tooth_passage"};
@@ -104,20 +107,54 @@ TEST_CASE("the phase shift between passes moves each pass's feed marks by its sh
   const auto shifted = run_scene(plate(direction, 30, 0, 45), o);
   const int sense = direction == "ccw" ? 1 : -1;
   const auto& g = base.raw.grid;
-  std::vector<int> shifts;
-  for (double x : {-0.25, 0.05, 0.25}) {  // 0.05 mm beside the passes at -0.3, 0 and 0.3
+  for (const int k : {-1, 0, 1}) {
+    const double x = 0.3 * k + (k < 1 ? 0.05 : -0.05);  // inside the patch, nearest pass k
     const auto i = static_cast<std::size_t>(std::lround((x - g.x0) / g.dx));
     const auto [s, error] = row_shift(base.raw, shifted.raw, i, 20);
-    INFO(direction << ": column at x = " << g.x(i) << " shifted by " << s << " rows, worst "
-                   << error * 1e6 << " nm");
+    INFO(direction << ": column at x = " << g.x(i) << " (pass " << k << ") shifted by " << s
+                   << " rows, worst " << error * 1e6 << " nm");
     CHECK(error < 1e-9);
-    shifts.push_back(s);
+    CHECK(s == wrap_rows(-sense * 5 * k, 20));
   }
-  for (std::size_t k = 0; k + 1 < shifts.size(); ++k) {
-    INFO(direction << ": passes " << k << " and " << k + 1 << " shifted by " << shifts[k] << " and "
-                   << shifts[k + 1] << " rows");
-    CHECK(wrap_rows(shifts[k + 1] - shifts[k], 20) == wrap_rows(-sense * 5, 20));
-  }
+}
+
+TEST_CASE("the marks at a point do not depend on how wide the patch is", "[kinematics][path]") {
+  // Pass k and its phase (start + k shift) are the workpiece's: a patch twice as wide across the
+  // passes lays out more of them, and must give the same heights where the two overlap (the grids
+  // share those nodes). Counted from the first pass the patch lays out instead, pass phases move
+  // with its width (0.9 um seen at shift 45).
+  struct Case {
+    const char* name;
+    std::vector<std::string> set;
+    const char* wide;  // the wider patch
+  };
+  const Case c = GENERATE(Case{"raster", {}, "[1.3, 0.3]"},
+                          Case{"zigzag", {"path.plugin=zigzag"}, "[1.3, 0.3]"},
+                          Case{"zigzag along X (passes stepped along Y)",
+                               {"path.plugin=zigzag", "path.feed_axis=x"},
+                               "[0.6, 0.75]"});
+  const std::string direction = GENERATE(as<std::string>{}, "cw", "ccw");
+  auto set = c.set;
+  set.push_back("evaluator.plugin=tooth_passage");
+  const auto small = run_scene(plate(direction, 30, 30, 45, "[0.6, 0.3]"), set);
+  const auto large = run_scene(plate(direction, 30, 30, 45, c.wide), set);
+  const auto &a = small.raw.grid, &b = large.raw.grid;
+  std::size_t shared = 0;
+  double worst = 0;
+  for (std::size_t j = 0; j < a.ny; ++j)
+    for (std::size_t i = 0; i < a.nx; ++i) {
+      const double u = (a.x(i) - b.x0) / b.dx, v = (a.y(j) - b.y0) / b.dy;
+      const double iu = std::round(u), jv = std::round(v);
+      REQUIRE(std::abs(u - iu) < 1e-6);
+      REQUIRE(std::abs(v - jv) < 1e-6);
+      ++shared;
+      worst = std::max(worst,
+                       std::abs(small.raw.at(i, j) - large.raw.at(static_cast<std::size_t>(iu),
+                                                                  static_cast<std::size_t>(jv))));
+    }
+  INFO(c.name << ", " << direction << ": largest difference over " << shared << " nodes "
+              << worst * 1e6 << " nm");
+  CHECK(worst < 1e-9);
 }
 
 TEST_CASE("both evaluators cut where edge_point puts the edge, with either helix sense",

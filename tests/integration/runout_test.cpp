@@ -1,5 +1,6 @@
 // Spindle runout ([runout]): absent or zero it changes no bit; the offset turns with the spindle
 // from tooth 1; and on an inclined plane the feed marks it leaves are what the sphere says.
+#include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <sstream>
@@ -113,6 +114,38 @@ TEST_CASE("the runout's offset points along tooth 1 and turns with the spindle",
     CHECK(d.y() == Approx(e * std::sin(edge)).margin(1e-12));
     CHECK(d.z() == 0.0);
   }
+}
+
+TEST_CASE("a tilted tool's runout turns in the plane normal to its axis", "[runout][posture]") {
+  // The runout offsets the tool's axis from the spindle's: in the plane normal to the spindle,
+  // not in the workpiece's XY plane. Built here: x_t the workpiece's X projected onto that plane,
+  // y_t = a x x_t, and the offset e (cos(edge) x_t + sin(edge) y_t), edge as for a vertical tool.
+  // Laid in XY instead, it is e (1 - cos 10 deg) = 76 nm off, and no longer normal to a.
+  const std::string scene = testing::paper_scene(kConvex, 30.0, 0.2, 0.2, 0.02);
+  const std::string posture = GENERATE(as<std::string>{}, "fixed", "normal");
+  const std::vector<std::string> tilt{"path.tilt=10", "path.lead=-5", "path.posture=" + posture,
+                                      "evaluator.plugin=zmap"};
+  auto with_runout = tilt;
+  with_runout.insert(with_runout.end(), {"runout.offset=0.005", "runout.angle=25"});
+  const auto plain = prepared(scene, tilt), off = prepared(scene, with_runout);
+  const auto& a = *plain.layout.path;
+  const auto& b = *off.layout.path;
+  REQUIRE_FALSE(a.vertical());
+  const double e = 0.005, rev = 2 * M_PI / std::abs(a.spindle_rate());
+  for (std::size_t p : {std::size_t{0}, a.passes() - 1})
+    for (double t : {0.0, 0.0011, 0.0137}) {
+      const topomill::Vec3 d = b.nominal_centre(p, t) - a.nominal_centre(p, t);
+      const topomill::Vec3 axis = a.axis(p, t);
+      const topomill::Vec3 x_t =
+          (topomill::Vec3::UnitX() - axis.x() * axis).normalized();  // X less its part along a
+      const topomill::Vec3 y_t = axis.cross(x_t);
+      const double edge = plain.tool->tooth_angle(0) + a.spindle_angle(p, t + 25.0 / 360.0 * rev);
+      const topomill::Vec3 expected = e * (std::cos(edge) * x_t + std::sin(edge) * y_t);
+      INFO(posture << ", pass " << p << ", t " << t << " s: offset " << d.transpose()
+                   << ", expected " << expected.transpose());
+      CHECK((d - expected).norm() < 1e-12);
+      CHECK(std::abs(d.dot(axis)) < 1e-12);
+    }
 }
 
 TEST_CASE("runout's feed marks on a plane follow from the sphere", "[runout][closed-form]") {

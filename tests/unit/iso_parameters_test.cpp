@@ -191,6 +191,36 @@ TEST_CASE("Heights spread evenly: the material ratio curve is a line", "[iso]") 
   CHECK(value(v, "Sk") == Approx(hu).margin(2 * tu));
 }
 
+TEST_CASE("Peaks and valleys as triangles: Spk and Svk are their heights", "[iso]") {
+  // ISO 13565-2 (ISO 25178-2's Spk, Svk): Spk is the height of the triangle on base Smr1 whose
+  // area is the peaks' above the core line, Svk the same for the valleys below it. Heights spread
+  // so that the material ratio curve is a core line from `top` falling `sk` over the whole ratio,
+  // with a wedge H high over [0, m1] above it and one V deep over [m2, 1] below it: the peaks'
+  // area is H m1 / 2, so Spk = H, and Svk = V. The core's steepest parts are the wedges, so its
+  // least-gradient 40 % secant is the core line.
+  const double top = 0.002, sk = 0.002, H = 0.003, V = 0.004, m1 = 0.1, m2 = 0.8;  // mm
+  const std::size_t side = 200, n = side * side;
+  Surface s = grid_surface(side, side, 0.001);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double m = (static_cast<double>(k) + 0.5) / static_cast<double>(n);  // k-th highest
+    const double z = m < m1   ? top + H * (1 - m / m1)
+                     : m < m2 ? top - sk * m
+                              : top - sk - V * (m - m2) / (1 - m2);
+    s.map.z[(k * 7919) % n] = z;
+  }
+  const auto core = MaterialRatioCurve(s).core();
+  const double tol = 4 * (H + V) / static_cast<double>(side);  // a node's share at the steps
+  CHECK(core.Sk == Approx(sk).margin(tol));
+  CHECK(core.Smr1 == Approx(m1).margin(4.0 / static_cast<double>(side)));
+  CHECK(core.Smr2 == Approx(m2).margin(4.0 / static_cast<double>(side)));
+  CHECK(core.Spk == Approx(H).margin(tol));
+  CHECK(core.Svk == Approx(V).margin(tol));
+  // The report, in um.
+  const ParameterValues v = compute_parameters(s, select_parameters({"functional"}), {});
+  CHECK(value(v, "Spk") == Approx(H * 1e3).margin(tol * 1e3));
+  CHECK(value(v, "Svk") == Approx(V * 1e3).margin(tol * 1e3));
+}
+
 TEST_CASE("Two levels: volumes are rectangles", "[iso]") {
   // 30 % of the nodes at H, the rest at 0: about the mean 0.3 H the curve is 0.7 H up to
   // mr = 0.3 and -0.3 H after.

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <pugixml.hpp>
+#include <sstream>
 
 #include "io/csv.hpp"
 #include "io/gsf.hpp"
@@ -90,27 +91,38 @@ TEST_CASE("every writer round-trips through its reader", "[metrology][io]") {
     return 1e-3 * std::sin(40 * x) * std::cos(30 * y) + 0.2;
   });
   s.map.grid.x0 = -0.43, s.map.grid.y0 = 25.75;  // a run's origin, kept by x3p, gsf and CSV
+  // Spacings apart, so that a writer that swaps them (or writes one for both) shows.
+  const double dx = 0.004, dy = 0.0061;
+  s.map.grid.dy = dy;
   const std::string dir = testing::temp_dir("roundtrip");
   std::filesystem::create_directories(dir);
   write_x3p(dir + "/a.x3p", s.map);
   write_sdf(dir + "/a.sdf", s.map);
   write_gsf(dir + "/a.gsf", s.map, {"t", "a scene; tool x (radius 5)", 0});
   write_csv(dir + "/a.csv", s.map, {"a title\non two lines", "a scene\rnamed with breaks", 0});
-  // The CSV's grid comes from its header, with or without a --spacing that agrees; line breaks
-  // in its title or scene do not break the header (they would be read as rows).
+  Surface square = s;
+  square.map.grid.dy = dx;
+  write_csv(dir + "/square.csv", square.map, {"square", "a scene", 0});
+  // The CSV's grid comes from its header, with or without a --spacing that agrees (one spacing:
+  // a square grid's); line breaks in its title or scene do not break the header (they would be
+  // read as rows).
   const Surface x = read_x3p(dir + "/a.x3p"), d = read_sdf(dir + "/a.sdf"),
                 gs = read_gsf(dir + "/a.gsf"), c = read_csv(dir + "/a.csv", 0),
-                c2 = read_csv(dir + "/a.csv", 0.004);
+                c2 = read_csv(dir + "/square.csv", dx);
   CHECK(c.map.grid.x0 == s.map.grid.x0);
   CHECK(c.map.grid.y0 == s.map.grid.y0);
   CHECK(c2.map.z == c.map.z);
   CHECK_THROWS_WITH(read_csv(dir + "/a.csv", 0.005),
                     Catch::Contains("the file's header gives dx_mm = 0.004") &&
                         Catch::Contains("a.csv:6), not 0.005"));
+  CHECK_THROWS_WITH(read_csv(dir + "/a.csv", dx),
+                    Catch::Contains("the file's header gives dy_mm = 0.0061") &&
+                        Catch::Contains("a.csv:7), not 0.004"));
   for (const Surface* r : {&x, &d, &gs, &c}) {
     REQUIRE(r->map.grid.nx == 23);
     REQUIRE(r->map.grid.ny == 17);
-    CHECK(r->map.grid.dx == Approx(0.004).epsilon(1e-6));
+    CHECK(r->map.grid.dx == Approx(dx).epsilon(1e-10));
+    CHECK(r->map.grid.dy == Approx(dy).epsilon(1e-10));
   }
   for (const Surface* r : {&x, &gs, &c}) {  // the formats that carry the origin
     CHECK(r->map.grid.x0 == Approx(s.map.grid.x0).epsilon(1e-12));
@@ -128,6 +140,19 @@ TEST_CASE("every writer round-trips through its reader", "[metrology][io]") {
   CHECK(
       std::string(vts.child("VTKFile").child("StructuredGrid").attribute("WholeExtent").value()) ==
       "0 22 0 16 0 0");
+  {  // The points: x along the first index at dx, y along the second at dy.
+    std::istringstream points(vts.child("VTKFile")
+                                  .child("StructuredGrid")
+                                  .child("Piece")
+                                  .child("Points")
+                                  .child("DataArray")
+                                  .child_value());
+    std::vector<double> p(3 * s.map.z.size());
+    for (double& v : p) REQUIRE(points >> v);
+    CHECK(p[3] - p[0] == Approx(dx).epsilon(1e-6));  // ten digits
+    CHECK(p[3 * 23 + 1] - p[1] == Approx(dy).epsilon(1e-6));
+    CHECK(p[3 * 23] == Approx(p[0]).epsilon(1e-15));
+  }
   for (const auto& e : std::filesystem::directory_iterator(dir))
     CHECK(e.path().filename().string().find(".partial") == std::string::npos);
 }
@@ -234,6 +259,46 @@ TEST_CASE("an L-filter longer than the map removes the mean, with a kernel no lo
     const Surface f = l_filter(s, cutoff);
     for (std::size_t k = 0; k < s.map.z.size(); ++k)
       REQUIRE(f.map.z[k] == Approx(s.map.z[k] - mean).margin(1e-9));
+  }
+}
+
+TEST_CASE("a Gaussian longer than a strip's short side is the Gaussian written out",
+          "[metrology][filter]") {
+  // ISO 16610-61's weighting function s(d) = exp(-pi (d / (alpha lc))^2) / (alpha lc), alpha =
+  // sqrt(ln 2 / pi), over the points within one cut-off along each axis (the kernel's extent),
+  // normalised over those that exist: summed here over the map, point by point. On 10 x 40 and
+  // 40 x 10 maps, with a cut-off longer than the short side (0.25 mm) and than both (0.8 mm), so
+  // that a kernel cut to the wrong axis' length shows.
+  const double dx = 0.01;
+  for (const auto& [nx, ny] : {std::pair<std::size_t, std::size_t>{10, 40}, {40, 10}}) {
+    Surface s;
+    Grid g;
+    g.nx = nx, g.ny = ny, g.dx = dx, g.dy = dx;
+    s.map = HeightMap(g);
+    for (std::size_t j = 0; j < ny; ++j)
+      for (std::size_t i = 0; i < nx; ++i)
+        s.map.at(i, j) = std::sin(0.9 * static_cast<double>(i)) * std::cos(0.3 * j) + 0.02 * j;
+    for (const double lc : {0.25, 0.8}) {
+      const double alpha = std::sqrt(std::log(2.0) / M_PI);
+      auto weight = [&](double d) {
+        return std::abs(d) <= lc + 1e-12 ? std::exp(-M_PI * std::pow(d / (alpha * lc), 2)) : 0.0;
+      };
+      const Surface f = l_filter(s, lc);
+      double worst = 0;
+      for (std::size_t j = 0; j < ny; ++j)
+        for (std::size_t i = 0; i < nx; ++i) {
+          double sum = 0, norm = 0;
+          for (std::size_t q = 0; q < ny; ++q)
+            for (std::size_t p = 0; p < nx; ++p) {
+              const double w = weight((static_cast<double>(p) - static_cast<double>(i)) * dx) *
+                               weight((static_cast<double>(q) - static_cast<double>(j)) * dx);
+              sum += w * s.map.at(p, q), norm += w;
+            }
+          worst = std::max(worst, std::abs(f.map.at(i, j) - (s.map.at(i, j) - sum / norm)));
+        }
+      INFO(nx << " x " << ny << ", cut-off " << lc << " mm");
+      CHECK(worst < 1e-12);
+    }
   }
 }
 

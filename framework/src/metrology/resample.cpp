@@ -39,15 +39,29 @@ std::optional<double> convolve(const double f_in[4], const bool ok[4], const dou
     if (w[a] != 0) sum += w[a] * f[a];
   return sum;
 }
+
+// A point this share of a cell beyond the first or last node is taken as on it: a node's position
+// computed another way (a registered frame's sines and cosines, x0 + i dx against a spacing with
+// no exact binary form) lands some ulps off, and an edge node must not be dropped for that. A
+// millionth of a cell moves the height by at most the slope times that.
+constexpr double kEdgeRoundOff = 1e-6;
+
+// The point's place in cells along one axis, snapped onto the end nodes within round-off; NaN
+// outside.
+double cell_place(double x, double x0, double d, std::size_t n) {
+  const double u = (x - x0) / d, last = static_cast<double>(n - 1);
+  if (u < 0 && u >= -kEdgeRoundOff) return 0.0;
+  if (u > last && u <= last + kEdgeRoundOff) return last;
+  return u >= 0 && u <= last ? u : NAN;
+}
 }  // namespace
 
 std::optional<double> CubicSampler::at(double x, double y) const {
   const Grid& g = s_.map.grid;
   if (g.nx < 3 || g.ny < 3) return std::nullopt;
-  const double u = (x - g.x0) / g.dx, v = (y - g.y0) / g.dy;
+  const double u = cell_place(x, g.x0, g.dx, g.nx), v = cell_place(y, g.y0, g.dy, g.ny);
   const auto nx = static_cast<std::ptrdiff_t>(g.nx), ny = static_cast<std::ptrdiff_t>(g.ny);
-  if (!(u >= 0 && v >= 0 && u <= static_cast<double>(nx - 1) && v <= static_cast<double>(ny - 1)))
-    return std::nullopt;
+  if (std::isnan(u) || std::isnan(v)) return std::nullopt;
   // The cell (i, j) holding the point; the last node's point uses the cell before it.
   const auto i = std::min(static_cast<std::ptrdiff_t>(u), nx - 2);
   const auto j = std::min(static_cast<std::ptrdiff_t>(v), ny - 2);
