@@ -123,36 +123,13 @@ TEST_CASE("zigzag reverses every second pass and leaves the others as raster lay
     }
 }
 
-TEST_CASE("raster and raster_across give the bits topomill gave before the path was a slot",
+TEST_CASE("raster and raster_across give the bits kept in tests/refdata/raster_bits",
           "[path]") {
-  // tests/refdata/raster_bits/: height_raw.csv of each case, 20 um grid, 2 threads, written by
-  // commit 6424af8 (the last with the path laid out by the core) and written again when the
-  // run-in stopped depending on the spacing (layout.cpp: the marks move by 2 spacings, 40 um
-  // here; between the two nothing else changed the bits). The dynamics case was written again
-  // in session 18, when the corrected walks began to prune by a seed from the reference walk and
-  // by the correction's path length: 12 of its 1936 heights moved by 5e-8 um at most (the same
-  // crossings solved from other brackets), checked against the file before. The two ideal
-  // tooth_passage cases were written again in session 19, when the row walk began to start each
-  // crossing where its last two moves point: 1071 of 1936 heights at lambda 30 moved by 2.7e-12
-  // um at most, 45 of 156 on the flat scallop by 2.2e-10 um (Newton's last step now often not
-  // taken: the guess is within its tolerance already), checked against the files before. The
-  // flat scallop was written again in session 20 (the near-axis walk's floors, tip and
-  // monotone_within): 2 of its 156 heights moved by 5.3e-12 um, checked against the file before;
-  // and in session 22 (the row walk's near-axis zone and hints from the last node's roots):
-  // 7 of 156 by 3.4e-10 um at most, checked against the file before. The lambda 30 and dynamics
-  // cases were written again in session 23 (roots kept one Newton step on, and Newton's last
-  // step taken without a probe where proven to land: PassageGeometry::land): 790 and 726 of
-  // 1936 heights moved by 6.9e-11 and 7.5e-11 um at most, checked against the files before.
-  // The flat scallop was written again in session 24 (the parallel passes walked from the last
-  // node's winner, so other passes' roots are kept for the next node): 1 of its 156 heights moved
-  // by 1.8e-10 um, checked against the file before. The lambda 30 case and the flat scallop were
-  // written again in session 25 (a followed root predicted from its last five moves, not two:
-  // RowSweep::Root::ahead): 1318 of 1936 heights moved by 3.6e-10 um at most and 16 of 156 by
-  // 2.2e-10 um, checked against the files before. The flat scallop was written again in
-  // session 26 (the phase's rate bounded from the side of a pass's line: walks end sooner, on
-  // other roots): 15 of its 156 heights moved by 4.3e-10 um at most, checked against the file
-  // before; and in session 27 (the row walk's zone solved directly: lined_zone.cpp): 1 of 156 by
-  // 5.3e-12 um, checked against the file before.
+  // tests/refdata/raster_bits/: height_raw.csv of each case, 20 um grid, 2 threads, as this tree
+  // writes it: first by the last commit with the path laid out by the core (6424af8). They guard
+  // a restructuring against changing any bit. A change that moves them on purpose writes them
+  // again, is checked against the files before, and says in its commit which heights moved and
+  // how far (their history: git log tests/refdata/raster_bits).
   // The CSV's numbers are the shortest that read back to the same double: equal text, equal bits.
   struct Case {
     const char* file;
