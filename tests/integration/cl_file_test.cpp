@@ -388,6 +388,12 @@ TEST_CASE("a 5-axis raster written as CL points is that raster to the points' ch
     const double t = share * cl.pass(1).t_end;
     CHECK((cl.axis(1, t) - testing::posture_axis(cl, 1, t)).norm() < 1e-14);
   }
+  // posture_axis writes the blend again; at the points themselves the axis is the file's own
+  // (written from the raster's axis at those times), whatever the blend.
+  for (std::size_t k = 0; k < cl.pass(1).waypoints.size(); k += 7) {
+    const double t = path.pass(1).t_end * static_cast<double>(k) / (points - 1);
+    CHECK((cl.axis(1, cl.waypoint_time(1, k)) - path.axis(1, t)).norm() < 1e-12);
+  }
   // The feed column keeps the raster's times (its feed is uniform in Y, not along the path).
   CHECK(cl.pass(1).t_end == Approx(path.pass(1).t_end).epsilon(1e-12));
   const auto a = run_scene(raster_scene, set);

@@ -95,7 +95,9 @@ TEST_CASE("no runout and a zero runout give the same bits", "[runout]") {
 TEST_CASE("the runout's offset points along tooth 1 and turns with the spindle", "[runout]") {
   // At any time the ball centre is the runout away from where it is without it, towards tooth
   // 1's edge (its zero-lag azimuth) at angle 0, and at angle 90 deg towards where that edge
-  // will be a quarter turn later, whichever way the spindle turns.
+  // will be a quarter turn later, whichever way the spindle turns. (The edge's azimuth comes from
+  // spindle_angle and tooth_angle, which kinematics_test.cpp checks by the mirror image and the
+  // start angle's translation, and tool_geometry_test.cpp against docs/model.md.)
   const std::string scene = testing::paper_scene(kConvex, 30.0, 0.2, 0.2, 0.02);
   const std::string direction = GENERATE(as<std::string>{}, "cw", "ccw");
   const double angle = GENERATE(0.0, 90.0, -30.0);
