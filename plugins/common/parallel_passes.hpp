@@ -33,8 +33,12 @@ struct PassPhase {
         .with_unit("deg")
         .with_default(0.0);
   }
+  // Each modulo a turn first (fmod is exact, and leaves an angle within a turn as it is), so that
+  // k shift stays finite for any k a patch can lay out, whatever the numbers given.
   explicit PassPhase(const Params& p)
-      : start(p.number("start_angle") * M_PI / 180), shift(p.number("phase_shift") * M_PI / 180) {}
+      : start(std::fmod(p.number("start_angle"), kTurn) * M_PI / 180),
+        shift(std::fmod(p.number("phase_shift"), kTurn) * M_PI / 180) {}
+  static constexpr double kTurn = 360.0;  // deg
 
   // Pass k's spindle angle as it starts, k counted on the workpiece (parallel_passes).
   double at(long k) const { return start + static_cast<double>(k) * shift; }
