@@ -71,6 +71,8 @@ TEST_CASE("CL reader: APT motion, feeds, rapids, units and continuations", "[cl]
       "UNITS/INCHES\n"
       "GOTO/0,0,0.5,0,0.6,0.8\n"
       "GOTO/1,0,0.5\n"
+      "FEDRAT/IPM, 10\n"
+      "GOTO/2,0,0.5\n"
       "END-OF-PATH\n"
       "FINI\n";
   const cl::Data d = cl::read_text(text, cl::Format::Apt);
@@ -80,12 +82,13 @@ TEST_CASE("CL reader: APT motion, feeds, rapids, units and continuations", "[cl]
   CHECK(d.passes[0][1].feed == 300);
   CHECK(d.passes[0][1].line == 9);  // a continued statement is where it starts
   CHECK(d.passes[0][2].position == Eigen::Vector3d(2, 0, 1));
-  REQUIRE(d.passes[1].size() == 3);
+  REQUIRE(d.passes[1].size() == 4);
   CHECK(d.passes[1][1].position == Eigen::Vector3d(0, 0, 0.5 * 25.4));
   CHECK((d.passes[1][1].axis - Eigen::Vector3d(0, 0.6, 0.8)).norm() < 1e-15);
   // The axis is modal: a GOTO without one keeps the last.
   CHECK((d.passes[1][2].axis - Eigen::Vector3d(0, 0.6, 0.8)).norm() < 1e-15);
   CHECK(d.passes[1][2].feed == 600);
+  CHECK(d.passes[1][3].feed == 254);  // 10 in/min, 1 in = 25.4 mm
   CHECK(d.has_axis);
 }
 
