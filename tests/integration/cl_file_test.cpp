@@ -12,106 +12,14 @@
 #include <sstream>
 
 #include "support/brute_force.hpp"
+#include "support/cl_scenes.hpp"
 #include "support/run_command.hpp"
 #include "support/scenes.hpp"
 
 using testing::run_scene;
+using namespace testing::cl;
 
 namespace {
-
-// A vertical ball end (R 1 mm, two teeth, helix 20 deg) on a plate or the convex arc (r 20 mm);
-// `paper`: the paper's tool and cut (R 5 mm, fz 0.1, ae 0.3, ap 0.1), for which the effects'
-// tables (testing::dynamics_tables) are made.
-std::string scene(const std::string& workpiece, const std::string& path, double spacing,
-                  double size, const std::string& place = "lambda = 0.0", bool paper = false) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "[tool]\nplugin = 'ball_end_constant_lead'\nradius = " << (paper ? 5.0 : 1.0)
-    << "\nteeth = 2\nhelix_angle = 20\n"
-    << "[workpiece]\n"
-    << workpiece << "\n[cutting]\n"
-    << (paper ? "spindle_speed = 4000\nfeed_per_tooth = 0.1\ndepth_of_cut = 0.1\nstepover = 0.3\n"
-              : "spindle_speed = 6000\nfeed_per_tooth = 0.03\ndepth_of_cut = 0.02\n"
-                "stepover = 0.06\n")
-    << "spindle_direction = 'cw'\n"
-    << "[path]\n"
-    << path << "\n[region]\n"
-    << place << "\nsize = [" << size << ", " << size << "]\nspacing = " << spacing << "\n";
-  return s.str();
-}
-const std::string kPlate = "plugin = 'inclined_plane'";
-const std::string kArc = "plugin = 'convex_arc'\nradius = 20.0";
-
-topomill::Prepared prepared(const std::string& toml, const std::vector<std::string>& set = {}) {
-  auto doc = topomill::SceneDocument::parse_string(toml, "cl.toml");
-  for (const auto& s : set) doc.apply_override(s);
-  topomill::PluginCatalog catalog({{topomill::PluginCatalog::builtin_dir(), "built-in"}});
-  return topomill::prepare(doc.resolve(catalog), catalog);
-}
-
-// This run's folder for CL files.
-std::string cl_dir() {
-  static const std::string dir = [] {
-    const std::string d = testing::temp_dir("cl_file");
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-
-std::string cl_path(const std::string& file, const std::string& point = "centre") {
-  return "plugin = 'cl_file'\nfile = '" + file + "'\npoint = '" + point + "'";
-}
-
-// A pass's ball centre without the runout (the CL data locate the spindle's axis).
-topomill::Vec3 spindle_centre(const topomill::ToolPath& path, std::size_t p, double t) {
-  return path.nominal_centre(p, t) - path.runout_offset(p, t);
-}
-
-// Writes `path`'s passes as CL data, `points` per pass evenly in time, with the axis when
-// `axes`: CSV (a blank line between passes) or APT (RAPID before each pass's first point). With
-// `feeds` (CSV) each point carries the feed of the move to it, its chord over its time: the CL
-// pass keeps the path's times.
-std::string write_cl(const topomill::ToolPath& path, int points, bool axes, bool apt,
-                     const std::string& name, bool feeds = false) {
-  const std::string file = cl_dir() + "/" + name + (apt ? ".cl" : ".csv");
-  std::ofstream out(file);
-  char buf[256];
-  if (!apt) out << (axes ? "x,y,z,i,j,k" : "x,y,z") << (feeds ? ",f\n" : "\n");
-  if (apt) out << "PARTNO/written by cl_file_test\nUNITS/MM\nMULTAX\n";
-  for (std::size_t p = 0; p < path.passes(); ++p) {
-    if (apt) out << "RAPID\n";
-    for (int k = 0; k < points; ++k) {
-      const double t = path.pass(p).t_end * k / (points - 1);
-      const topomill::Vec3 c = spindle_centre(path, p, t), a = path.axis(p, t);
-      if (axes)
-        std::snprintf(buf, sizeof buf, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", c.x(), c.y(), c.z(),
-                      a.x(), a.y(), a.z());
-      else
-        std::snprintf(buf, sizeof buf, "%.17g,%.17g,%.17g", c.x(), c.y(), c.z());
-      out << (apt ? "GOTO/" : "") << buf;
-      if (feeds) {
-        const double dt = path.pass(p).t_end / (points - 1), tk = k > 0 ? t : dt;
-        const double chord =
-            (spindle_centre(path, p, tk) - spindle_centre(path, p, tk - dt)).norm();
-        std::snprintf(buf, sizeof buf, ",%.17g", chord / dt * 60);
-        out << buf;
-      }
-      out << "\n";
-    }
-    if (!apt) out << "\n";
-  }
-  if (apt) out << "FINI\n";
-  return file;
-}
-
-double largest_difference(const topomill::HeightMap& a, const topomill::HeightMap& b) {
-  REQUIRE(a.grid.nx == b.grid.nx);
-  REQUIRE(a.grid.ny == b.grid.ny);
-  double worst = 0;
-  for (std::size_t i = 0; i < a.z.size(); ++i) worst = std::max(worst, std::abs(a.z[i] - b.z[i]));
-  return worst;
-}
 
 // The largest difference of a map from the brute force at every node but those `skip` says,
 // where it is, and how many nodes were compared.
@@ -222,73 +130,6 @@ TEST_CASE("the raster written as CL data gives the raster's forces and correctio
   CHECK(inside < 1e-12);
   // The first pass runs a step-over before the patch and leaves its nodes alone.
   CHECK(largest_difference(raster.raw, cl.raw) < 1e-12);
-}
-
-TEST_CASE("CL data's own feed sets the chip: twice the scene's feed is the raster at 2 fz",
-          "[cl]") {
-  // The file's f column moves the tool at its own speed, and the force model's feed per tooth
-  // follows it (speed x 2 pi / omega / teeth): a raster written at fz = 0.2 mm and read into a
-  // scene of fz = 0.1 mm is the fz = 0.2 mm raster, forces and all, away from the passes' ends
-  // (see above).
-  const std::string tables = testing::dynamics_tables();
-  const std::vector<std::string> twice{"cutting.feed_per_tooth=0.2"};
-  const std::string raster_scene =
-      scene(kPlate, "plugin = 'raster'", 0.01, 0.3, "lambda = 0.0", true) + tables;
-  const auto m = prepared(raster_scene, twice);
-  const std::string file = write_cl(*m.layout.path, 2, false, false, "twice", true);
-  const auto raster = run_scene(raster_scene, twice);
-  const auto cl = run_scene(scene(kPlate, cl_path(file), 0.01, 0.3, "lambda = 0.0", true) + tables);
-  const topomill::ToolPath &a = *raster.layout.path, &b = *cl.layout.path;
-  REQUIRE(a.passes() == b.passes());
-  const double reach = std::sqrt(2 * 5.0 * 0.1 - 0.1 * 0.1);
-  double inside = 0;
-  for (std::size_t p = 1; p < a.passes(); ++p) {
-    const auto &ca = a.correction_samples(p).values, &cb = b.correction_samples(p).values;
-    REQUIRE(ca.size() == cb.size());
-    for (std::size_t k = 0; k < ca.size(); ++k)
-      if ((a.pass(p).t_end - a.correction_step(p) * k) * a.feed_speed() > reach)
-        inside = std::max(inside, (ca[k] - cb[k]).norm());
-  }
-  INFO("corrections apart by " << inside * 1e3 << " um");
-  CHECK(inside < 1e-9);
-  CHECK(largest_difference(raster.raw, cl.raw) < 1e-9);
-}
-
-TEST_CASE("a feed in inches per minute is 25.4 mm/min an inch, end to end", "[cl]") {
-  // The raster at 2 fz written as APT with its speed in FEDRAT, once in mm/min and once in in/min
-  // (1 in = 25.4 mm exactly), each read into a scene of fz: both are the raster at 2 fz. Left
-  // unconverted, IPM moves the tool 25.4 times slower: its marks 25.4 times closer.
-  const std::vector<std::string> twice{"cutting.feed_per_tooth=0.06"};
-  const std::string raster_scene = scene(kPlate, "plugin = 'raster'", 0.004, 0.1);
-  const auto m = prepared(raster_scene, twice);
-  const topomill::ToolPath& path = *m.layout.path;
-  const double mm_per_min = path.feed_speed() * 60;
-  auto write = [&](const std::string& name, const std::string& fedrat) {
-    const std::string file = cl_dir() + "/" + name + ".cl";
-    std::ofstream out(file);
-    out << "PARTNO/" << name << "\nUNITS/MM\n" << fedrat << "\n";
-    char buf[256];
-    for (std::size_t p = 0; p < path.passes(); ++p) {
-      out << "RAPID\n";
-      for (const double t : {0.0, path.pass(p).t_end}) {
-        const topomill::Vec3 c = spindle_centre(path, p, t);
-        std::snprintf(buf, sizeof buf, "GOTO/%.17g,%.17g,%.17g\n", c.x(), c.y(), c.z());
-        out << buf;
-      }
-    }
-    out << "FINI\n";
-    return file;
-  };
-  char rate[128];
-  std::snprintf(rate, sizeof rate, "FEDRAT/MMPM,%.17g", mm_per_min);
-  const std::string mmpm = write("feed_mmpm", rate);
-  std::snprintf(rate, sizeof rate, "FEDRAT/IPM,%.17g", mm_per_min / 25.4);
-  const std::string ipm = write("feed_ipm", rate);
-  const auto raster = run_scene(raster_scene, twice);
-  const auto in_mm = run_scene(scene(kPlate, cl_path(mmpm), 0.004, 0.1));
-  const auto in_inches = run_scene(scene(kPlate, cl_path(ipm), 0.004, 0.1));
-  CHECK(largest_difference(raster.raw, in_mm.raw) < 1e-9);
-  CHECK(largest_difference(in_mm.raw, in_inches.raw) < 1e-9);
 }
 
 // The raster turned by 30 deg in plan on a plate: parallel passes 0.7 mm long, a step-over
