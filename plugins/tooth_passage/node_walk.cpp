@@ -25,7 +25,7 @@ double node_height_reference(const PassageSetup& s, double x, double y, NodeCoun
     if (geo.bound(t_b) - slack >= best) continue;  // this pass cannot lower the node
     best = std::min(best, geo.walk(t_b, roots, counts.passages, best));
     if (s.on_tip_line(p, x, y))
-      best = std::min(best, geo.tip_height(s.tilted[p] ? s.tip_time(p, x, y) : t0));
+      best = std::min(best, geo.tip_height(s.window[p].tilted ? s.tip_time(p, x, y) : t0));
   }
   return best;
 }

@@ -14,191 +14,14 @@
 // (its chord, speed and acceleration), which follow from the centre's through the sphere.
 #pragma once
 
-#include <atomic>
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "blend_frame.hpp"
-#include "centre_table.hpp"
-#include "lag_shape.hpp"
-#include "topomill/topography_evaluator.hpp"
+#include "passage_setup.hpp"
+#include "probe.hpp"
 
 namespace topomill::plugins {
-
-constexpr double kTwoPi = 2 * M_PI;
-
-// To (-pi, pi].
-inline double wrap(double a) {
-  return a - kTwoPi * std::floor(a / kTwoPi + 0.5);
-}
-
-// What every node needs from the tool, the path and the knobs, computed once per evaluation.
-struct PassageSetup {
-  PassageSetup(const EvaluationRequest& rq, double margin, int iterations);
-
-  const ToolPath* path;
-  const ToolGeometry* tool;
-  // The walks take a pass in straight stretches, windows: a pass that is one line (every pass
-  // the path models make, and cutter-location passes written along one line) is one window,
-  // [0, t_end]; a bent pass of cutter-location data is one window per run of collinear segments,
-  // [t_k, t_m], whose tables continue its line beyond its ends (Stretch, centre_table.hpp). A
-  // window's envelope over a node has a single minimum, as a line pass's; crossings count only
-  // within their window, where the table is the pass, and together the windows cover the pass.
-  // Every per-pass vector below is per window.
-  struct Window {
-    std::size_t pass;
-    double t_lo, t_hi;
-    std::size_t segment;  // the first waypoint segment in it (0 on a line pass)
-  };
-  std::vector<Window> window;
-  // Whether every window is a whole pass along one of X or Y (the path's feed axis): then a
-  // pass's `line` orders them across, which the row sweep's stopping rule needs.
-  bool parallel;
-  double R, R2, omega, speed;  // speed: the slowest feed in plan along a window (mm/s)
-  double rev;                  // one spindle revolution, s
-  double period;               // one tooth period, s
-  double reach;                // R plus the largest correction: farther across, a pass cannot touch
-  double margin, kappa;
-  int iterations, teeth;
-  bool along_y;  // parallel: the passes feed along Y (else along X)
-  // The run's stop request (may be null): a row checks it at every node, since one row can take
-  // seconds on a steep face or at a tiny step-over.
-  const std::atomic<bool>* stop = nullptr;
-  bool stopped() const { return stop && stop->load(std::memory_order_relaxed); }
-  std::vector<double> tooth_angle;
-  double sin_tip, lag_tip;          // below the tip angle the lag is held (ToolGeometry)
-  LagShape lag_shape;               // bounds of the lag's turn, for the phase bounds
-  std::vector<CentreTable> centre;  // per pass
-  // Per pass with a runout, the spindle's axis (the centre less the runout): the floor's.
-  std::vector<CentreTable> spindle_axis;
-  std::vector<double> line;  // parallel: a pass's nominal x (feeding along Y) or y
-  // Per window, its spindle axis's segment in plan from its start to its end, and how far the
-  // centre strays from it (the runout and the correction in plan): nodes farther than R more
-  // than that cannot be cut by it.
-  struct PlanSegment {
-    double ax, ay, bx, by, slack;
-    double distance(double x, double y) const;
-  };
-  std::vector<PlanSegment> segment;
-  // The windows that can cut (x, y), as (key, window) in the key's order: parallel, those whose
-  // line is within `reach`, keyed by that distance across; else those whose segment is within R
-  // and its slack, keyed by a lower bound of every height they can cut there (so that, once the
-  // node's best height is at or below a key, no window from there on can lower it).
-  void near(double x, double y, std::vector<std::pair<double, std::size_t>>& out) const;
-  // Whether (x, y) lies on the line window w's tip follows (PassageGeometry::kOnAxis).
-  bool on_tip_line(std::size_t w, double x, double y) const;
-  // Per pass, whether the tool is tilted on it, and then its frame's transpose (rows x_t, y_t, a:
-  // fixed over the pass), and where its tip is in plan from the centre (-R a's x and y).
-  std::vector<char> tilted;
-  std::vector<Eigen::Matrix3d> to_tool;
-  std::vector<std::pair<double, double>> tip_offset;
-  // Per window along the normal over the curvature (or of CL data whose axis turns: `blend`
-  // below), the frame's turn: the normal turns about X by
-  // the change of the surface's inclination under the centre, theta(t) = lambda(t) - lambda(0),
-  // and with it the axis and the frame (Q(t) = R_x(-theta) Q(0): docs/model.md). Bounds of
-  // |theta'| and |theta''| over the pass (rad/s, rad/s^2), from samples with a margin as the
-  // centre's acceleration (CentreTable::accel_xy). `on` false: the frame is fixed.
-  // A window of cutter-location data whose axis turns (`blend`) turns as BlendFrame says, and
-  // rate and accel bound its angular velocity and that velocity's rate.
-  struct Turn {
-    bool on = false;
-    double lambda0 = 0, rate = 0, accel = 0;
-    bool blend = false;
-    BlendFrame frame;
-  };
-  std::vector<Turn> turn;
-  static Turn turn_bounds(const ToolPath& path, const Window& w, double pad);
-  // theta at t on a turning pass, and theta' (the probes need the first only).
-  double turn_angle(std::size_t p, double t) const;
-  double turn_rate(std::size_t p, double t) const;
-  // The tool frame's transpose at t (rows x_t, y_t, a): to_tool turned by theta on a turning pass.
-  Eigen::Matrix3d to_tool_at(std::size_t p, double t) const;
-  // Whether the centre moves about a smooth path, by the correction (at the tooth period) or the
-  // runout (a circle of radius `runout` at the spindle's rate): then the envelope wiggles and has
-  // dips anywhere, and the walks bound passages by its floor instead (floor_envelope).
-  bool wiggles;
-  double runout;  // mm
-  // Per pass, the range of the correction over the pass and the runout's (zero when ideal):
-  // wherever the centre is, it is within [shift_lo, shift_hi] of the spindle axis's nominal one.
-  std::vector<Vec3> shift_lo, shift_hi;
-  std::vector<double> lowest_centre;  // per pass, a lower bound of the corrected centre's height
-
-  // Per pass, the nominal centre's top speeds in plan and along z (mm/s).
-  std::vector<std::pair<double, double>> nominal_speed;
-  // Per pass, the distances from the axis [lo, hi] within which a crossing's next of the same
-  // tooth is at least half a revolution away: |G' - omega| <= sqrt(1 + Psi_u^2) v / rho
-  // anywhere, so G' stays within (0, 2 omega) while the centre, at its top speed v, stays
-  // farther than sqrt(1 + Psi_u^2) v / omega and within 0.95 R (the lag's slope bounded).
-  std::vector<std::pair<double, double>> gap_rho;
-  double gap_lag = 1;  // sqrt(1 + Psi_u^2) with the lag's slope over the ball to 0.95 R
-  // Per pass, a line in plan that the centre, corrected or not, never strays from by more than
-  // `off` (through (x, y) along the unit (ux, uy); off infinite when the pass does not move in
-  // plan), and the centre's top speed in plan. A node farther from the line than off + v / omega
-  // (times the lag's sqrt(1 + Psi_u^2)) keeps G' within (0, 2 omega) all along the pass (see
-  // gap_rho), whatever the crossing's distance: on a straight pass, every node but those within
-  // about v / omega of its line.
-  struct PlanLine {
-    double x, y, ux, uy, off, speed;
-    // An ideal window of a vertical tool on a fixed frame whose centre always moves forwards
-    // along the line (every pass the path models make): the least speed along it, and the
-    // greatest in plan and across it, exact on the centre's table (PassageGeometry::line_rates).
-    // along_lo is 0 for any other window.
-    double along_lo = 0, speed_hi = INFINITY, across_hi = INFINITY;
-  };
-  std::vector<PlanLine> plan_line;
-  // The centre's top horizontal and vertical speed over [ta, tb] on pass p.
-  std::pair<double, double> top_speed(std::size_t p, double ta, double tb) const;
-
-  // The pass's time when its centre is level with (x, y) along the feed (secant steps).
-  double level_time(std::size_t p, double x, double y) const;
-  // When its tip is: the centre level with (x, y) less the tip's offset (the level time for a
-  // vertical tool).
-  double tip_time(std::size_t p, double x, double y) const {
-    double t = level_time(p, x - tip_offset[p].first, y - tip_offset[p].second);
-    // On a turning window the tip's offset turns with the frame (along the normal only along
-    // the feed: a turn about X leaves R a_x as it was): a few steps of the level time at the
-    // offset then.
-    for (int k = 0; k < 4 && turn[p].on && std::isfinite(t); ++k) {
-      const Vec3 a = to_tool_at(p, t).row(2).transpose();
-      t = level_time(p, x + R * a.x(), y + R * a.y());
-    }
-    return t;
-  }
-  // Parallel: the line in plan the tip follows (across the feed): the pass's own for a vertical
-  // tool.
-  double tip_line(std::size_t p) const {
-    return line[p] + (along_y ? tip_offset[p].first : tip_offset[p].second);
-  }
-  // The contact range [lo, hi] of polar angles at that time, as R sin(lo), R sin(hi).
-  std::pair<double, double> contact_radii(std::size_t p, double t) const;
-};
-
-// When a walk in one direction ends: after two passages in a row each higher than the one
-// before, or off the ball (past the node). Both walks stop by it, so they stop alike.
-class RiseCount {
- public:
-  void add(double lowest) {
-    if (!std::isfinite(lowest))
-      ++count_;
-    else
-      count_ = lowest > last_ ? count_ + 1 : 0, last_ = lowest;
-  }
-  bool done() const { return count_ >= 2; }
-
- private:
-  double last_ = INFINITY;
-  int count_ = 0;
-};
-
-struct Probe {
-  bool over;      // under the ball, inside the contact range
-  double g;       // edge azimuth minus node azimuth, wrapped
-  double height;  // ball height above the node (+inf when not under the ball)
-  double rho;     // distance from the axis
-  double lag;     // the edge's lag at rho (NaN when not under the ball)
-};
 
 class PassageGeometry {
  public:
@@ -206,7 +29,7 @@ class PassageGeometry {
   PassageGeometry(const PassageSetup& s, std::size_t w, double x, double y, double rho_lo,
                   double rho_hi)
       : s_(s),
-        table_(s.centre[w]),
+        table_(s.window[w].centre),
         win_(w),
         src_(s.window[w].pass),
         x_(x),
@@ -216,10 +39,10 @@ class PassageGeometry {
         phase_(s.path->pass(src_).phase),
         t_lo_(s.window[w].t_lo),
         t_hi_(s.window[w].t_hi),
-        tilted_(s.tilted[w] != 0),
-        turning_(s.turn[w].on),
-        to_tool_(s.to_tool[w]) {
-    const PassageSetup::PlanLine& l = s.plan_line[w];
+        tilted_(s.window[w].tilted),
+        turning_(s.window[w].turn.on),
+        to_tool_(s.window[w].to_tool) {
+    const PassageSetup::PlanLine& l = s.window[w].plan_line;
     const double across = l.ux * (y - l.y) - l.uy * (x - l.x);
     line_gap_ = std::abs(across) - l.off;
     // -az' = (q x v) / rho^2 has the sign of -across (q x v above): with the spindle where that
@@ -309,8 +132,8 @@ class PassageGeometry {
   // spindle axis's nominal centre moved by the range's lowest z and as close to the node as the
   // range allows. It has a single minimum, as the ideal envelope.
   double floor_envelope(double t) const {
-    const Vec3 c = s_.runout > 0 ? s_.spindle_axis[win_].nominal(t) : table_.nominal(t);
-    const Vec3 &lo = s_.shift_lo[win_], &hi = s_.shift_hi[win_];
+    const Vec3 c = s_.runout > 0 ? s_.window[win_].spindle_axis->nominal(t) : table_.nominal(t);
+    const Vec3 &lo = s_.window[win_].shift_lo, &hi = s_.window[win_].shift_hi;
     const double dx = x_ - c.x(), dy = y_ - c.y();
     const double ex = dx - std::clamp(dx, lo.x(), hi.x()), ey = dy - std::clamp(dy, lo.y(), hi.y());
     const double r2 = ex * ex + ey * ey, z = c.z() + lo.z();
@@ -470,9 +293,9 @@ class PassageGeometry {
   // What the frame's turn adds to the ball point's speed in the tool frame (at most |theta'| R:
   // a turn of a point at R from the centre) and to its acceleration, given the point's own speed
   // v there (2 |theta'| v + (|theta''| + theta'^2) R); zero on a fixed frame.
-  double turn_speed() const { return turning_ ? s_.turn[win_].rate * s_.R : 0.0; }
+  double turn_speed() const { return turning_ ? s_.window[win_].turn.rate * s_.R : 0.0; }
   double turn_accel(double v) const {
-    const PassageSetup::Turn& q = s_.turn[win_];
+    const PassageSetup::Turn& q = s_.window[win_].turn;
     return turning_ ? 2 * q.rate * v + (q.accel + q.rate * q.rate) * s_.R : 0.0;
   }
   // G'(t), the phase's rate (rad/s): the same for every tooth. `dv` is the correction's slope on
@@ -493,13 +316,13 @@ class PassageGeometry {
   // monotone from a few micrometres out (the paper's loxodrome at its feed: 3.3 um), and there G'
   // may exceed 2 omega: no caller needs that bound, only the sign and advance's exactness.
   bool monotone_from(double rho, double duration) const {
-    const double v = s_.plan_line[win_].speed, out = rho + v * duration;
+    const double v = s_.window[win_].plan_line.speed, out = rho + v * duration;
     if (out > 0.95 * s_.R) return false;
     return far_from_line() || clears_line(out) ||
            (lined() && 1.01 * line_rates(out).first < std::abs(s_.omega));
   }
   // Whether line_rates can know anything here: a window that keeps to its line, the node off it.
-  bool lined() const { return s_.plan_line[win_].along_lo > 0 && line_gap_ > 0; }
+  bool lined() const { return s_.window[win_].plan_line.along_lo > 0 && line_gap_ > 0; }
   // Whether the node lies outside the strip its window's centre keeps to (PlanLine), for a
   // vertical tool on a fixed frame: then the centre stays in a convex region that leaves the node
   // out, and advance() is exact between any two times of the window's table.
@@ -604,11 +427,9 @@ class PassageGeometry {
   // itself when ideal, its floor when it wiggles.
   double bound(double t) const { return s_.wiggles ? floor_envelope(t) : envelope(t); }
 
-  // The tip is a point of every edge, and g jumps by pi (not through zero) where the axis passes
-  // over the node: a node on the pass's line, which the axis passes within kOnAxis of at t0
-  // (the level time), is cut by the tip then. +inf otherwise.
-  static constexpr double kOnAxis = 1e-9;  // mm
-  double tip_height(double t0) const {     // t0: PassageSetup::tip_time
+  // A node on the pass's line, which the axis passes within kOnAxis of at t0 (the level time), is
+  // cut by the tip then; +inf otherwise.
+  double tip_height(double t0) const {  // t0: PassageSetup::tip_time
     const Probe q = probe(0, t0);
     return q.over && q.rho < kOnAxis ? q.height : INFINITY;
   }
@@ -623,6 +444,8 @@ class PassageGeometry {
               double below = INFINITY, Crossing* lowest = nullptr) const;
 
  private:
+  // |(x, y)| without hypot's care for overflow, which costs here and is not needed (mm and mm/s).
+  static double norm(double x, double y) { return std::sqrt(x * x + y * y); }
   // Where tooth 0's phase G, unwrapped from its value at probe `a` (time ta), equals `level` in
   // [ta, b], G(b) = g_b; G monotone there and the node out of the axis's way (advance).
   double solve_level(double ta, const Probe& a, double b, double g_b, double level) const;
@@ -639,7 +462,7 @@ class PassageGeometry {
   // farther from the window's line than S v / omega. next_gap settles most nodes by it too.
   bool far_from_line() const {
     return !tilted_ && !turning_ &&
-           line_gap_ >= 1.01 * s_.gap_lag * s_.plan_line[win_].speed / std::abs(s_.omega);
+           line_gap_ >= 1.01 * s_.gap_lag * s_.window[win_].plan_line.speed / std::abs(s_.omega);
   }
   // Where on the chord from a to b (0 to 1, in plan) the node's foot lies.
   double nearest_on_chord(const Vec3& a, const Vec3& b) const {

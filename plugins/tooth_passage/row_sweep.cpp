@@ -17,14 +17,14 @@ bool stays_above(const Root& r, double x, double target) {
 
 RowSweep::RowSweep(const PassageSetup& s)
     : s_(s),
-      by_line_(s.line.size()),
-      state_(s.line.size()),
+      by_line_(s.window.size()),
+      state_(s.window.size()),
       later_(static_cast<std::size_t>(s.teeth)),
       before_(static_cast<std::size_t>(s.teeth)) {
   std::iota(by_line_.begin(), by_line_.end(), std::size_t{0});
   if (s.parallel)
     std::sort(by_line_.begin(), by_line_.end(),
-              [&](std::size_t a, std::size_t b) { return s.line[a] < s.line[b]; });
+              [&](std::size_t a, std::size_t b) { return s.window[a].line < s.window[b].line; });
   for (auto& st : state_) st.roots.resize(static_cast<std::size_t>(s.teeth));
 }
 
@@ -82,7 +82,9 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
     // in plan, so from the nearest line every pass in between was walked first (lambda 30 with
     // the passes along the cylinder's axis: 12.1 passages a node, 3.0 from the last winner).
     // The line of the pass at place i of by_line_.
-    auto line_at = [&](std::ptrdiff_t i) { return s_.line[by_line_[static_cast<std::size_t>(i)]]; };
+    auto line_at = [&](std::ptrdiff_t i) {
+      return s_.window[by_line_[static_cast<std::size_t>(i)]].line;
+    };
     std::ptrdiff_t right = 0;
     double from = key;  // where the sides are measured from
     if (s_.parallel) {
@@ -91,7 +93,7 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
         right = winner, from = line_at(winner);
       else
         right = std::lower_bound(by_line_.begin(), by_line_.end(), key,
-                                 [&](std::size_t p, double v) { return s_.line[p] < v; }) -
+                                 [&](std::size_t p, double v) { return s_.window[p].line < v; }) -
                 by_line_.begin();
     }
     std::ptrdiff_t left = right - 1;
@@ -106,7 +108,7 @@ void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCount
       int& missed = misses[take_left ? 0 : 1];
       const std::size_t p = by_line_[static_cast<std::size_t>(at)];
       const double before = best;
-      const bool can_lower = std::abs(key - s_.line[p]) < s_.reach && visit(p);
+      const bool can_lower = std::abs(key - s_.window[p].line) < s_.reach && visit(p);
       if (best < before) winner = at;
       // The seed's pass is skipped as a matter of course: that is not a side's end.
       missed = can_lower || p == seeded ? 0 : missed + 1;
@@ -151,7 +153,7 @@ double RowSweep::pass_height(std::size_t p, double x, double y, double best, boo
     if (std::isnan(t_b)) return INFINITY;
     const double low = geo.envelope(t_b);
     if (low >= best) {
-      const Vec3 c = s_.centre[p](t_b);
+      const Vec3 c = s_.window[p].centre(t_b);
       const double dx = x - c.x(), dy = y - c.y(), r2 = dx * dx + dy * dy;
       st.floor = low, st.floor_x = x;
       st.floor_slope = r2 < 0.81 * s_.R2 ? 2 * std::abs(dx) / std::sqrt(s_.R2 - r2)
@@ -213,7 +215,7 @@ template <class T0>
 double RowSweep::tip_height(const PassageGeometry& geo, T0 t0) const {
   const std::size_t p = geo.window();
   if (!s_.on_tip_line(p, geo.x(), geo.y())) return INFINITY;
-  return geo.tip_height(s_.tilted[p] ? s_.tip_time(p, geo.x(), geo.y()) : t0());
+  return geo.tip_height(s_.window[p].tilted ? s_.tip_time(p, geo.x(), geo.y()) : t0());
 }
 
 // The bottom moves little from one node to the next: a parabola through three heights around
@@ -561,8 +563,8 @@ bool RowSweep::solve_root(const PassageGeometry& geo, int tooth, const Root* fro
   r = Root{t, from && x != from->x ? (t - from->t) / (x - from->x) : 0.0, slope};
   if (geo.within(t) && std::isfinite(q.height))
     r.x = x, r.height = q.height,
-    r.fall = fall_rate(geo.window(), t, q.rho, s_.tilted[geo.window()] ? geo.distance(t) : q.rho,
-                       r.reach);
+    r.fall = fall_rate(geo.window(), t, q.rho,
+                       s_.window[geo.window()].tilted ? geo.distance(t) : q.rho, r.reach);
   return true;
 }
 
@@ -608,7 +610,7 @@ double RowSweep::revisit(const PassageGeometry& geo, PassState& st, double best,
 }
 
 double RowSweep::floor_steepness(std::size_t p, double below) const {
-  const double depth = s_.lowest_centre[p] - below;
+  const double depth = s_.window[p].lowest_centre - below;
   return depth > 0 ? std::max(1.0, s_.R / depth) : INFINITY;
 }
 
@@ -636,9 +638,9 @@ double RowSweep::fall_rate(std::size_t p, double t, double rho, double plan, dou
   const double plan_hi = plan + moved;
   if (plan_hi >= 0.95 * s_.R) return INFINITY;
   const double sp_hi = plan_hi / s_.R, cp_hi = std::sqrt(1 - sp_hi * sp_hi);
-  const double L = s_.tilted[p] ? 1 / cp_hi : 1.0;
+  const double L = s_.window[p].tilted ? 1 / cp_hi : 1.0;
   // A turning frame moves the point by up to |theta'| R more a second (span_tilted).
-  const double turned = s_.turn[p].on ? s_.turn[p].rate * s_.R : 0.0;
+  const double turned = s_.window[p].turn.on ? s_.window[p].turn.rate * s_.R : 0.0;
   const double rho_lo = rho - (L * moved + turned * w), rho_hi = rho + L * moved + turned * w;
   if (rho_lo <= 0 || rho_hi >= 0.95 * s_.R) return INFINITY;
   const double s_lo = rho_lo / s_.R, s_hi = rho_hi / s_.R;

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "node_walk.hpp"
+#include "rise_count.hpp"
 
 namespace topomill::plugins {
 

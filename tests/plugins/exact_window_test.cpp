@@ -29,7 +29,8 @@ TEST_CASE("an exact window finds a crossing where the phase turns at exactly its
   std::uniform_real_distribution<double> along(-0.08, 0.08), unit(0.0, 1.0);
   int windows = 0, missed = 0;
   for (int n = 0; n < 20; ++n) {
-    const double x = s.along_y ? s.line[p] : along(rng), y = s.along_y ? along(rng) : s.line[p];
+    const double x = s.along_y ? s.window[p].line : along(rng),
+                 y = s.along_y ? along(rng) : s.window[p].line;
     const double t0 = s.level_time(p, x, y);
     REQUIRE(std::isfinite(t0));
     const auto radii = s.contact_radii(p, t0);

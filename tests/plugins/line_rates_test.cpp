@@ -27,16 +27,17 @@ TEST_CASE("the side of a pass's line bounds the phase's rate", "[tooth_passage][
   const PassageSetup s = testing::passage_setup(m);
   REQUIRE(s.parallel);
   const std::size_t middle = testing::nearest_pass(s);  // and the next pass
-  REQUIRE(middle + 1 < s.line.size());
+  REQUIRE(middle + 1 < s.window.size());
   const double w = std::abs(s.omega), sense = s.omega > 0 ? 1.0 : -1.0, out = 0.3;
   int samples = 0, outside = 0, gaps = 0, early = 0;
   double worst_with = 0;  // the largest fall sampled where the azimuth turns with the spindle
   for (const std::size_t p : {middle, middle + 1})
     for (const double d : {-0.2, -0.05, -0.02, -0.01, -0.005, -0.003, -0.001, 0.001, 0.003, 0.005,
                            0.01, 0.02, 0.05, 0.2}) {
-      REQUIRE(s.plan_line[p].along_lo > 0);
-      INFO("pass " << p << " (line " << s.line[p] << " mm), d " << d << " mm");
-      const double x = s.along_y ? s.line[p] + d : 0.0, y = s.along_y ? 0.0 : s.line[p] + d;
+      REQUIRE(s.window[p].plan_line.along_lo > 0);
+      INFO("pass " << p << " (line " << s.window[p].line << " mm), d " << d << " mm");
+      const double x = s.along_y ? s.window[p].line + d : 0.0,
+                   y = s.along_y ? 0.0 : s.window[p].line + d;
       const double t0 = s.level_time(p, x, y);
       REQUIRE(std::isfinite(t0));
       const auto radii = s.contact_radii(p, t0);
@@ -45,7 +46,7 @@ TEST_CASE("the side of a pass's line bounds the phase's rate", "[tooth_passage][
       REQUIRE(std::isfinite(fall));
       // The samples' extremes of the rate's departure from the spindle's, in its sense.
       double low = 0, high = 0;
-      const double reach = out / s.plan_line[p].speed;  // the node beyond `out` after that
+      const double reach = out / s.window[p].plan_line.speed;  // the node beyond `out` after that
       for (double t = t0 - reach; t <= t0 + reach; t += 2e-6) {
         if (!(geo.distance(t) <= out)) continue;
         // G' by the central difference of the phase itself (a probe's, no rate formula), 10 ns

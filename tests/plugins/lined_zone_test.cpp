@@ -46,13 +46,14 @@ TEST_CASE("the direct zone finds the lowest crossing the halving finds",
   const PassageSetup s = testing::passage_setup(m);
   REQUIRE(s.parallel);
   const std::size_t middle = testing::nearest_pass(s);
-  REQUIRE(middle + 1 < s.line.size());
+  REQUIRE(middle + 1 < s.window.size());
   int windows = 0, applied = 0, turn_backs = 0, calls = 0;
   double worst = 0;
   for (const std::size_t p : {middle, middle + 1})
     for (const double d :
          {-0.05, -0.02, -0.01, -0.005, -0.002, -0.001, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05}) {
-      const double x = s.along_y ? s.line[p] + d : 0.013, y = s.along_y ? 0.013 : s.line[p] + d;
+      const double x = s.along_y ? s.window[p].line + d : 0.013,
+                   y = s.along_y ? 0.013 : s.window[p].line + d;
       const double t0 = s.level_time(p, x, y);
       REQUIRE(std::isfinite(t0));
       const auto radii = s.contact_radii(p, t0);
@@ -155,7 +156,8 @@ TEST_CASE("the direct zone's convexity bound holds along the pass", "[tooth_pass
   double tightest = INFINITY;  // the least (K'' sampled) / m
   for (const double d : {-0.05, -0.01, -0.003, -0.001, 0.001, 0.003, 0.01, 0.05}) {
     INFO("d " << d << " mm");
-    const double x = s.along_y ? s.line[p] + d : 0.013, y = s.along_y ? 0.013 : s.line[p] + d;
+    const double x = s.along_y ? s.window[p].line + d : 0.013,
+                 y = s.along_y ? 0.013 : s.window[p].line + d;
     const double t0 = s.level_time(p, x, y);
     const auto radii = s.contact_radii(p, t0);
     const PassageGeometry geo(s, p, x, y, radii.first, radii.second);

@@ -66,8 +66,8 @@ inline std::vector<LineCase> line_cases() {
 // The pass whose line is nearest the patch's middle (the line at 0).
 inline std::size_t nearest_pass(const topomill::plugins::PassageSetup& s) {
   std::size_t p = 0;
-  for (std::size_t k = 1; k < s.line.size(); ++k)
-    if (std::abs(s.line[k]) < std::abs(s.line[p])) p = k;
+  for (std::size_t k = 1; k < s.window.size(); ++k)
+    if (std::abs(s.window[k].line) < std::abs(s.window[p].line)) p = k;
   return p;
 }
 

@@ -49,7 +49,7 @@ namespace topomill::plugins {
 
 double PassageGeometry::lined_convexity(double rho_hi, double* k2) const {
   if (!lined() || !(rho_hi < 0.95 * s_.R)) return -INFINITY;
-  const PassageSetup::PlanLine& line = s_.plan_line[win_];
+  const PassageSetup::PlanLine& line = s_.window[win_].plan_line;
   const double w = std::abs(s_.omega), rho_lo = line_gap_;
   const LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);
   const double k3 = s_.lag_shape.bend_rate_to(rho_hi);
@@ -65,7 +65,7 @@ bool PassageGeometry::crossings_lined(int only, double a, double b, double& belo
                                       std::vector<Crossing>& roots, Probe* ends,
                                       const std::vector<Hint>* hints) const {
   if (!lined() || !(b > a)) return false;
-  const PassageSetup::PlanLine& line = s_.plan_line[win_];
+  const PassageSetup::PlanLine& line = s_.window[win_].plan_line;
   const double sense = s_.omega > 0 ? 1.0 : -1.0;
   const Probe pa = probe(0, a), pb = probe(0, b);
   if (!std::isfinite(pa.lag) || !std::isfinite(pb.lag)) return false;  // off the ball

@@ -1,0 +1,244 @@
+// PassageGeometry's certified halving: every crossing of [a, b] below a height, by subdivision
+// until each piece is proven, and the bracketed solves it ends in.
+#include "passage_geometry.hpp"
+
+#include <algorithm>
+
+#include <cstdint>
+#include <limits>
+#include "phase_curvature.hpp"
+
+namespace topomill::plugins {
+
+double PassageGeometry::split_time(double lo, double hi) const {
+  const double step = s_.path->correction_step(src_), mid = 0.5 * (lo + hi);
+  if (!(step > 0)) return mid;
+  const double top = last_knot() / step;  // the last knot's index
+  // The middle half's knots, ka .. kb: of those, the one with the most trailing zeros is kb with
+  // its bits below the highest bit where ka and kb differ cleared.
+  const double ka = std::max(std::ceil((lo + 0.25 * (hi - lo)) / step), 0.0);
+  const double kb = std::min(std::floor((hi - 0.25 * (hi - lo)) / step), top);
+  if (ka <= kb && kb < 0x1p52) {
+    const auto a = static_cast<std::uint64_t>(ka), b = static_cast<std::uint64_t>(kb);
+    const std::uint64_t k =
+        a == b ? b : b & ~((std::uint64_t{1} << (63 - __builtin_clzll(a ^ b))) - 1);
+    if (const double t = static_cast<double>(k) * step; t > lo && t < hi) return t;
+  }
+  // A piece shorter than two steps: the knot nearest the middle, if any.
+  for (const double k : {std::round(mid / step), std::floor(mid / step), std::ceil(mid / step)})
+    if (const double t = k * step; t > lo && t < hi && k >= 0 && k <= top) return t;
+  return mid;
+}
+
+// Cut [a, b] in halves until each piece is settled. On a piece of length h with ends' phases
+// g_a, g_b (each tooth's, wrapped to its nearest crossing):
+// - no tooth can cross there: |g_a| + |g_b| > top h for each (top the bound of |G'|), the phase
+//   cannot reach zero and back;
+// - no crossing under the ball can lie below `below` there (the ball too high, or out of contact);
+// - G monotone (fall < |omega|, rise < -|omega|, or G' of one sign at both ends with room for
+//   the curvature): G is known unwrapped across the piece (advance: the bounds need rho_lo > 0,
+//   so the axis cannot come round the node), and every tooth's crossings are the levels it
+//   passes, each solved in its bracket (solve_level). Far from the axis a whole revolution
+//   settles at once;
+// - the axis within kOnAxis of the node all along: the tip cuts it there.
+// Pieces are split at a correction knot inside first (G' jumps there: split_time), else at the
+// middle; below a 1e-10 revolution the sign change alone decides (a touch of the edge no grid can
+// resolve).
+void PassageGeometry::crossings_in(int only, double a, double b, double& below,
+                                   std::vector<Crossing>& roots, Probe* ends) const {
+  struct End {
+    Sample at;
+    Probe q;      // tooth 0's
+    double rate;  // NaN until needed
+    Vec3 n;       // the nominal centre (span's, where knots lie inside: not read from the table)
+  };
+  struct Piece {
+    End lo, hi;
+  };
+  const double w = std::abs(s_.omega), min_len = 1e-10 * s_.rev;
+  // A piece whose ball stays within round-off of `below` (which falls as crossings are found)
+  // holds nothing lower that counts. Next to the tip (a point of every edge, and the ball's
+  // lowest near the axis) the pieces' floor equals the tip's height but for round-off: without
+  // the tie they were halved down to kOnAxis before anything ruled them out.
+  auto above = [&](double floor) {
+    return floor >= below - 16 * std::numeric_limits<double>::epsilon() * (std::abs(below) + s_.R);
+  };
+  const int first = only < 0 ? 0 : only, last = only < 0 ? s_.teeth - 1 : only;
+  // The probes' phases carry round-off of a few ulps of their largest terms (omega t, the pass's
+  // phase, the wrap). Where the phase turns at exactly its bound's rate (a node on the pass's line
+  // with no lag turning there: the azimuth stands still, so G' = omega and the bound is tight), a
+  // crossing inside a piece makes |g_a| + |g_b| equal its reach but for that round-off, which must
+  // not rule the crossing out: without the allowance it does in 158 of the 360 windows of
+  // tests/plugins/exact_window_test.cpp, and on the convex case's pass line a crossing 0.11 nm
+  // below the tip's cut is lost so.
+  const double roundoff = 32 * std::numeric_limits<double>::epsilon() *
+                          (w * std::max(std::abs(a), std::abs(b)) + std::abs(phase_) + 8 * M_PI);
+  // Tooth j's phase is tooth 0's turned by its angle: one probe serves all.
+  auto offset = [&](int j) { return s_.tooth_angle[j] - s_.tooth_angle[0]; };
+  // The first whole turn m at or above phase v for tooth j: its level is m 2 pi - offset(j).
+  auto first_turn = [&](double v, int j) { return std::ceil((v + offset(j)) / kTwoPi); };
+  auto end = [&](double t) {
+    Vec3 n;
+    const Sample at = sample(t, n);
+    return End{at, probe(0, t, at.c), NAN, n};
+  };
+  // The rate at an end on the side of a piece whose correction slope is dv (kept: an end is
+  // shared by two pieces, on the same slope except at a knot).
+  auto rate_of = [&](End& e, const Vec3& dv) {
+    if (e.at.dv != dv) return rate(e.at, dv);
+    if (std::isnan(e.rate)) e.rate = rate(e.at, dv);
+    return e.rate;
+  };
+  // The ball's lowest possible height over the node on a piece.
+  auto floor_of = [&](const Piece& p, const Span& sp) {
+    if (sp.plan_lo >= s_.R) return double(INFINITY);
+    const double a = p.lo.at.t, b = p.hi.at.t;
+    // The nominal centre's lowest, and the correction's (its box's, where span read it).
+    const double shift = !std::isnan(sp.box_z_lo) ? sp.box_z_lo
+                         : table_.corrected()     ? table_.correction_bounds(a, b).lo.z()
+                                                  : 0.0;
+    const double z = table_.nominal_lowest_z(a, b, p.lo.n.z(), p.hi.n.z()) + shift;
+    return z - std::sqrt(s_.R2 - sp.plan_lo * sp.plan_lo);
+  };
+  auto found = [&](int tooth, double t) {
+    const Probe q = probe(tooth, t);
+    roots.push_back({tooth, t, q});
+    if (q.over) below = std::min(below, q.height);
+  };
+  // The pieces still to settle, in storage kept by the caller's thread from call to call (an
+  // allocation each call was 4 % of the halving's instructions at lambda 0 with effects), taken
+  // into a local for the call: every use of a thread_local in a shared library is a call to find
+  // it (2 % of the instructions there).
+  thread_local std::vector<Piece> kept;
+  std::vector<Piece> stack;
+  stack.swap(kept);
+  stack.clear();
+  // Whether piece p is settled (its crossings, if any, found); false when it must be halved.
+  auto settle = [&](Piece& p) {
+    const double h = p.hi.at.t - p.lo.at.t;
+    const Span sp = span(p.lo.at, p.hi.at, &p.lo.n, &p.hi.n);
+    if (sp.rho_hi <= kOnAxis) {
+      // The axis within kOnAxis of the node all along: the tip, a point of every edge, cuts it
+      // here (g jumps by pi rather than crossing zero, and no subdivision settles it).
+      found(first, 0.5 * (p.lo.at.t + p.hi.at.t));
+      return true;
+    }
+    const double reach = sp.turn(w, h) + roundoff;
+    bool reachable = false;
+    for (int j = first; j <= last && !reachable; ++j)
+      reachable =
+          std::abs(wrap(p.lo.q.g + offset(j))) + std::abs(wrap(p.hi.q.g + offset(j))) <= reach;
+    if (!reachable) return true;
+    if (sp.rho_lo > rho_hi_ || sp.rho_hi < rho_lo_ || above(floor_of(p, sp))) return true;
+    // Monotone: turn < |omega|, or G' of one sign at both ends with room for the curvature (G'
+    // is then at least half their sum less the curvature's fall between).
+    bool mono = sp.monotone(w) || sp.falls(w);
+    if (!mono && std::isfinite(sp.curve)) {
+      const double ra = rate_of(p.lo, p.lo.at.dv), rb = rate_of(p.hi, p.lo.at.dv);
+      mono = (ra > 0) == (rb > 0) && 0.5 * (std::abs(ra) + std::abs(rb) - sp.curve * h) > 0;
+      if (!mono) {
+        // A turn-back inside: G stays within what its ends' phases and rates allow under the
+        // curvature bound (phase_range); where no tooth's level lies in that range, no crossing
+        // does.
+        const double g_lo = p.lo.q.g, g_hi = g_lo + advance(p.lo.at.t, p.lo.q, p.hi.at.t, p.hi.q);
+        const auto [v_lo, v_hi] = phase_range(g_lo, g_hi, ra, rb, sp.curve, h);
+        bool level = false;
+        for (int j = first; j <= last && !level; ++j)
+          level = first_turn(v_lo - 1e-9, j) * kTwoPi - offset(j) <= v_hi + 1e-9;
+        if (!level) return true;
+      }
+    }
+    if (mono) {
+      // Unwrapped from the piece's start (rho_lo > 0: the turn is exact), every tooth's levels
+      // G = 2 pi m - offset(j) between its ends.
+      const double g_lo = p.lo.q.g, g_hi = g_lo + advance(p.lo.at.t, p.lo.q, p.hi.at.t, p.hi.q);
+      const double v_lo = std::min(g_lo, g_hi), v_hi = std::max(g_lo, g_hi);
+      for (int j = first; j <= last; ++j)
+        for (double m = first_turn(v_lo, j); m * kTwoPi - offset(j) <= v_hi; ++m)
+          found(j, solve_level(p.lo.at.t, p.lo.q, p.hi.at.t, g_hi, m * kTwoPi - offset(j)));
+      return true;
+    }
+    if (h < min_len) {
+      for (int j = first; j <= last; ++j) {
+        const double ga = wrap(p.lo.q.g + offset(j)), gb = wrap(p.hi.q.g + offset(j));
+        if (crosses(ga, gb)) found(j, solve_bracket(j, p.lo.at.t, p.hi.at.t, ga, gb));
+      }
+      return true;
+    }
+    return false;
+  };
+  // Depth first, the piece in hand kept out of the stack (a push and a pop of two ends saved
+  // at each halving, and the rate at the end it keeps).
+  Piece p{end(a), end(b)};
+  if (ends) ends[0] = p.lo.q, ends[1] = p.hi.q;
+  // A stop request is honoured here too: on a steep face one node's pieces can take a minute.
+  while (!s_.stopped()) {
+    if (!settle(p)) {
+      const End mid = end(split_time(p.lo.at.t, p.hi.at.t));
+      // The half nearer the axis first: it holds the lowest crossings, which prune the other.
+      if (p.lo.q.rho < p.hi.q.rho)
+        stack.push_back(Piece{mid, p.hi}), p.hi = mid;
+      else
+        stack.push_back(Piece{p.lo, mid}), p.lo = mid;
+      continue;
+    }
+    if (stack.empty()) break;
+    p = stack.back();
+    stack.pop_back();
+  }
+  kept.swap(stack);
+}
+
+namespace {
+// The zero of f in [lo, hi], where f(lo) = f_lo and f(hi) = f_hi differ in sign and f is
+// monotone: regula falsi with the Illinois rule (the end kept twice has its value halved), to
+// |f| < 1e-9 or a bracket narrower than `width`.
+template <class F>
+double illinois(F f, double lo, double hi, double f_lo, double f_hi, double width) {
+  if (f_lo == 0) return lo;
+  if (f_hi == 0) return hi;
+  int side = 0;
+  for (int it = 0; it < 100 && hi - lo > width; ++it) {
+    double t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+    const double ft = f(t);
+    if (std::abs(ft) < 1e-9) return t;
+    if ((ft < 0) == (f_lo < 0)) {
+      lo = t, f_lo = ft;
+      if (side == -1) f_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = t, f_hi = ft;
+      if (side == 1) f_lo *= 0.5;
+      side = 1;
+    }
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
+double PassageGeometry::solve_level(double ta, const Probe& a, double b, double g_b,
+                                    double level) const {
+  // f = G - level, G unwrapped from ta (advance).
+  return illinois([&](double t) { return a.g + advance(ta, a, t, probe(0, t)) - level; }, ta, b,
+                  a.g - level, g_b - level, 1e-13 * s_.rev);
+}
+
+double PassageGeometry::solve_bracket(int tooth, double lo, double hi, double g_lo,
+                                      double g_hi) const {
+  return illinois([&](double t) { return probe(tooth, t).g; }, lo, hi, g_lo, g_hi, 1e-13 * s_.rev);
+}
+
+double PassageGeometry::bisect(int tooth, double lo, double hi, double g_lo) const {
+  for (int it = 0; it < 200 && hi - lo > 1e-13 * s_.rev; ++it) {
+    const double mid = 0.5 * (lo + hi), g_mid = probe(tooth, mid).g;
+    if ((g_mid < 0) == (g_lo < 0))
+      lo = mid, g_lo = g_mid;
+    else
+      hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace topomill::plugins

@@ -1,0 +1,105 @@
+// PassageGeometry's phase at one node: the probe's rate, Newton's crossing and its proven landing.
+#include "passage_geometry.hpp"
+
+#include <algorithm>
+
+#include "phase_curvature.hpp"
+
+namespace topomill::plugins {
+
+double PassageGeometry::crossing(int tooth, double t, double& slope, Probe& last) const {
+  double g_prev = 0, t_prev = t;
+  last = {false, INFINITY, INFINITY, INFINITY, NAN};
+  for (int k = 0; k < s_.iterations; ++k) {
+    const Sample at = sample(t);
+    last = probe(tooth, t, at.c);
+    const double gk = last.g;
+    if (converged(last)) break;
+    // Newton's step on the phase's own rate; the secant where that is too flat to step by (or
+    // undefined: on the axis). Near the axis, where the rate swings by v / rho within a passage,
+    // this takes a quarter fewer probes than the secant alone did.
+    double lag_rate = 0;
+    if (const double r = rate(at, at.dv, &lag_rate); std::abs(r) > 0.1 * std::abs(s_.omega)) {
+      slope = r;
+      if (land(at, r, lag_rate, t, last)) break;
+    } else if (k > 0 && t != t_prev && std::abs(gk - g_prev) < M_PI) {
+      const double sec = (gk - g_prev) / (t - t_prev);
+      if (std::abs(sec) > 0.1 * std::abs(s_.omega)) slope = sec;
+    }
+    g_prev = gk, t_prev = t;
+    t -= gk / slope;
+  }
+  return t;
+}
+
+bool PassageGeometry::land(const Sample& at, double r, double lag_rate, double& t, Probe& q) const {
+  if (turning_) return false;
+  const double dt = -q.g / r, t1 = at.t + dt, h = std::abs(dt);
+  // The correction is linear between knots: with one inside, G' may jump (no bound of G'').
+  const double step = s_.path->correction_step(src_);
+  if (step > 0 && std::floor(at.t / step) != std::floor(t1 / step) &&
+      std::min(at.t, t1) <= last_knot())
+    return false;
+  // The moving point (the node's offset from the axis; tilted, the ball point over it in the
+  // tool frame) moves at most at `speed` with at most `accel` over the step, so its rho stays
+  // within [rho_lo, rho_hi].
+  const double A = table_.accel_xy(), centre_accel = table_.accel();
+  const Vec3 v = at.v + at.dv;
+  const double v_plan = std::sqrt(v.x() * v.x() + v.y() * v.y()) + A * h;
+  double speed = v_plan, accel = A;
+  if (tilted_) {
+    const Lift lift = lift_bounds(s_.R, norm(x_ - at.c.x(), y_ - at.c.y()) + v_plan * h, v_plan, A);
+    if (lift.hz < 1e-6 * s_.R) return false;
+    speed = lift.L * v_plan, accel = lift.accel;
+  }
+  const double rho_lo = q.rho - speed * h, rho_hi = q.rho + speed * h;
+  if (!(rho_lo > 0)) return false;
+  const LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);
+  if (k.kink || !std::isfinite(k.k1) ||
+      0.5 * phase_curvature(k.k1, k.k2, speed, accel, rho_lo) * h * h > 1e-10 ||
+      0.5 * centre_accel * h * h > 1e-13)
+    return false;
+  const Vec3 c = at.c + v * dt;
+  const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
+  if (!(r2 < s_.R2)) return false;
+  const double below = std::sqrt(s_.R2 - r2);
+  double rho = std::sqrt(r2);
+  bool over = rho >= rho_lo_ && rho <= rho_hi_;
+  if (tilted_) {
+    const Vec3 p = to_tool_ * Vec3(dx, dy, -below);
+    rho = std::sqrt(p.x() * p.x() + p.y() * p.y());
+    over = p.z() <= 0 && rho >= rho_lo_ && rho <= rho_hi_;
+  }
+  t = t1;
+  q = {over, 0.0, c.z() - below, rho, q.lag + lag_rate * dt};
+  return true;
+}
+
+double PassageGeometry::rate(const Sample& at, const Vec3& dv, double* lag_rate) const {
+  if (tilted_) {
+    // The same in the tool frame: q the ball point's offset from the axis, q' its velocity.
+    Vec3 p, dp;
+    if (!lifted(at.t, at.c, at.v + dv, p, dp)) return NAN;
+    const double r2 = p.x() * p.x() + p.y() * p.y();
+    if (!(r2 > 0)) return NAN;
+    const double du = (p.x() * dp.x() + p.y() * dp.y()) / r2,
+                 daz = (p.x() * dp.y() - p.y() * dp.x()) / r2;
+    const double sin_a = std::sqrt(r2) / s_.R;
+    if (sin_a >= 1) return NAN;
+    const double lag = s_.lag_shape.slope(sin_a, std::abs(p.z()) / s_.R, *s_.tool) * du;
+    if (lag_rate) *lag_rate = lag;
+    return s_.omega + lag - daz;
+  }
+  const Vec3 &c = at.c, v = at.v + dv;
+  const double qx = x_ - c.x(), qy = y_ - c.y(), r2 = qx * qx + qy * qy;
+  if (!(r2 > 0)) return NAN;
+  // q' = -v: u' = (q . q') / r2, az' = (q x q') / r2.
+  const double du = -(qx * v.x() + qy * v.y()) / r2, daz = -(qx * v.y() - qy * v.x()) / r2;
+  const double sin_a = std::sqrt(r2) / s_.R;
+  if (sin_a >= 1) return NAN;
+  const double lag = s_.lag_shape.slope(sin_a, std::sqrt(1 - sin_a * sin_a), *s_.tool) * du;
+  if (lag_rate) *lag_rate = lag;
+  return s_.omega + lag - daz;
+}
+
+}  // namespace topomill::plugins
