@@ -136,7 +136,8 @@ class CentreTable {
     return ((*c)[1] + s * (2 * (*c)[2] + 3 * s * (*c)[3])) * inv_dt_;
   }
   // The nominal centre, its velocity and its acceleration at t, from the cubic that holds t;
-  // false beyond the table's cubics (the direct zone reads only the table: lined_zone.cpp).
+  // false beyond the table's cubics (the direct zone reads only the table:
+  // passage_geometry_lined.cpp).
   bool nominal_jet(double t, Vec3& c, Vec3& v, Vec3& a) const {
     double s;
     const Cubic* p = piece(t, s);

@@ -9,7 +9,8 @@
 // and the largest of those from the axis out to the bin (over()). That bounds them wherever they
 // are monotone within a bin (both built-in edges everywhere; a bin is R / 4096 wide); the
 // brute-force scan (node_walk.hpp) and the tests check the rest. The third derivative Psi_uuu is
-// kept the same way for the direct zone's convexity bound (lined_zone.cpp, bend_rate_to).
+// kept the same way for the direct zone's convexity bound (passage_geometry_lined.cpp,
+// bend_rate_to).
 //
 // At the rim (rho -> R, the ball's equator) the slope has no bound: rho = R sin(alpha) stops
 // growing while the lag still turns with alpha. The lag itself stays finite there (a loxodrome's
@@ -92,8 +93,8 @@ class LagShape {
     const std::size_t b = bin(hi);
     return {k1_[b], k2_[b], kink};
   }
-  // The largest |d^3 Psi / d (ln rho)^3| from the axis out to hi (lined_zone.cpp's proof; kept
-  // out of Bound, which the spans read at every piece), +inf at the rim.
+  // The largest |d^3 Psi / d (ln rho)^3| from the axis out to hi (passage_geometry_lined.cpp's
+  // proof; kept out of Bound, which the spans read at every piece), +inf at the rim.
   double bend_rate_to(double hi) const { return hi < R_ ? k3_[bin(hi)] : INFINITY; }
   // The largest |dPsi / d ln rho| from the axis out to rho.
   double slope_to(double rho) const { return over(0.0, rho).k1; }

@@ -50,6 +50,7 @@ class PassageGeometry {
     with_spindle_ = across * s.omega < 0;
   }
 
+  const PassageSetup& setup() const { return s_; }
   std::size_t window() const { return win_; }
   double x() const { return x_; }
   double y() const { return y_; }
@@ -80,24 +81,16 @@ class PassageGeometry {
   }
 
   Probe probe(int tooth, double t) const { return probe(tooth, t, table_(t)); }
+  // The ball point over the node, (dx, dy, -below) from the centre, taken into the tool frame
+  // (the frame map: the identity for a vertical tool), where its distance from the axis and its
+  // azimuth are the crossing equation's. Its polar angle from the tip is taken as asin(rho / R),
+  // the lag's argument: past a tilted tool's equator that folds back, which keeps g continuous
+  // (the bounds hold for it), and no edge is there (not over).
   Probe probe(int tooth, double t, const Vec3& c) const {
     const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
     if (r2 >= s_.R2) return {false, 0, INFINITY, std::sqrt(r2), NAN};
     const double below = std::sqrt(s_.R2 - r2);
-    if (tilted_) return probe_tilted(tooth, t, c, dx, dy, below);
-    const double rho = std::sqrt(r2);
-    const double sin_a = rho / s_.R;
-    const double lag = sin_a < s_.sin_tip ? s_.lag_tip : s_.tool->lag_sc(sin_a, below / s_.R);
-    return {rho >= rho_lo_ && rho <= rho_hi_,
-            wrap(s_.tooth_angle[tooth] + lag + phase_ + s_.omega * t - std::atan2(dy, dx)),
-            c.z() - below, rho, lag};
-  }
-  // A tilted tool: the ball point over the node, (dx, dy, -below) from the centre, in the tool
-  // frame. Its polar angle from the tip is taken as asin(rho / R), the lag's argument: past the
-  // tool's equator that folds back, which keeps g continuous (the bounds hold for it), and no
-  // edge is there (not over).
-  Probe probe_tilted(int tooth, double t, const Vec3& c, double dx, double dy, double below) const {
-    const Vec3 p = to_tool(t) * Vec3(dx, dy, -below);
+    const Vec3 p = tilted_ ? Vec3(to_tool(t) * Vec3(dx, dy, -below)) : Vec3(dx, dy, -below);
     const double rho = std::sqrt(p.x() * p.x() + p.y() * p.y()), sin_a = rho / s_.R;
     const double lag =
         sin_a < s_.sin_tip ? s_.lag_tip : s_.tool->lag_sc(sin_a, std::abs(p.z()) / s_.R);
@@ -270,13 +263,26 @@ class PassageGeometry {
   // the length of its path over the piece at most `length` (+inf: not known; Span::sweep).
   Span bound_rates(double rho_lo, double rho_hi, double v, double c_lo, double c_hi, double accel,
                    bool knot_inside, double length = INFINITY) const;
-  // A tilted tool's: the ball point over the node in the tool frame, lifted from the plan.
-  Span span_tilted(const Sample& a, const Sample& b, const Vec3* na, const Vec3* nb) const;
+  // The region in plan the centre keeps to over a piece (passage_geometry_bounds.cpp): a chord
+  // thickened by `grow`, the node's least and greatest distance from it, the centre's top speed.
+  struct PlanRegion {
+    Vec3 ca, cb;
+    double grow = 0, v = 0, lo = 0, hi = 0;
+    bool knot_inside = false;
+    double box_z_lo = NAN;     // the correction's lowest, where its box was read (knots inside)
+    double length = INFINITY;  // the centre's path in plan over the piece, where known
+  };
+  PlanRegion plan_region(const Sample& a, const Sample& b, const Vec3* na, const Vec3* nb) const;
+  // The bounds from the region: a vertical tool's (the node's offset from the axis moves), and a
+  // tilted tool's (the ball point over the node in the tool frame, lifted from the plan).
+  Span plan_rates(const Sample& a, const Sample& b, const PlanRegion& r) const;
+  Span lifted_rates(const Sample& a, const Sample& b, const PlanRegion& r) const;
   // The lift P(q) = (q, -sqrt(R^2 - |q|^2)) of a plan offset q that stays within `plan` of the
   // centre and moves at most at v with acceleration at most A: |P'| <= L v with L = R / hz,
   // hz = sqrt(R^2 - plan^2) (|P'|^2 = |q'|^2 + (q . q')^2 / (R^2 - |q|^2)), and |P''| <= accel
   // (the same differentiated once more); a fixed rotation into the tool frame keeps both. hz is
-  // 0 off the ball, and the bounds then meaningless. tests/plugins/land_test.cpp samples them.
+  // 0 off the ball, and the bounds then meaningless.
+  // tests/plugins/tooth_passage/passage_geometry_phase_test.cpp samples them.
   struct Lift {
     double hz, L, accel;
   };
@@ -391,12 +397,12 @@ class PassageGeometry {
                     Probe* ends = nullptr) const;
   // The same directly, where the window's centre keeps to its line (lined()): the phase's turning
   // points solved as the zeros of K = rho^2 G', proven convex (lined_convexity), then each
-  // tooth's levels between (lined_zone.cpp). False, with nothing found and `below` untouched,
-  // where that proof fails (the tip radius or the rim within reach, the node next to the line)
-  // or the zeros do not settle: crossings_in then, which stays the reference
-  // (tests/plugins/lined_zone_test.cpp). `hints`, where given: where crossings are expected
-  // (the row sweep's last node's, carried on), each solve starting from the one of its tooth
-  // nearest its place.
+  // tooth's levels between (passage_geometry_lined.cpp). False, with nothing found and `below`
+  // untouched, where that proof fails (the tip radius or the rim within reach, the node next to the
+  // line) or the zeros do not settle: crossings_in then, which stays the reference
+  // (tests/plugins/tooth_passage/passage_geometry_lined_test.cpp). `hints`, where given: where
+  // crossings are expected (the row sweep's last node's, carried on), each solve starting from the
+  // one of its tooth nearest its place.
   struct Hint {
     int tooth;
     double t;
@@ -407,6 +413,14 @@ class PassageGeometry {
   // from the axis: where it is positive, K has at most two zeros. -inf where none is known (the
   // tip radius or the rim within reach). `k2`, where given, gets the lag's bend it took.
   double lined_convexity(double rho_hi, double* k2 = nullptr) const;
+  // The one entry point: every crossing of `tooth` (every tooth when -1) in [a, b] that can lie
+  // below `below`, exactly, directly where the window keeps to its line (crossings_lined) and by
+  // the certified halving wherever that proof fails (crossings_in).
+  void crossings(int tooth, double a, double b, double& below, std::vector<Crossing>& roots,
+                 Probe* ends, const std::vector<Hint>* hints) const {
+    if (lined() && crossings_lined(tooth, a, b, below, roots, ends, hints)) return;
+    crossings_in(tooth, a, b, below, roots, ends);
+  }
   // Tooth 0's probe q as tooth j's (the same but for the phase, turned by the tooth's angle).
   Probe turned_to(const Probe& q, int j) const {
     Probe out = q;

@@ -8,57 +8,75 @@
 
 namespace topomill::plugins {
 
-PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb,
-                                            const Vec3* na_known, const Vec3* nb_known) const {
-  if (tilted_) return span_tilted(sa, sb, na_known, nb_known);
-  const double a = sa.t, b = sb.t;
+// The centre over a piece [a, b] keeps to a convex region in plan (as advance() needs): with no
+// correction knot inside, one smooth piece, the (tabulated) centre within A h^2 / 8 of its chord
+// (plus round-off) and its speed within A h / 2 of the larger at the ends (the correction's slope
+// is one over the piece: the one starting at a, as at b a knot may start the next); with knots
+// inside, the nominal centre (within its sagitta of the chord) moved by a correction within the
+// box it keeps to over [a, b], so within the chord moved to the box's middle, thickened by the
+// sagitta and the box's half diagonal.
+PassageGeometry::PlanRegion PassageGeometry::plan_region(const Sample& sa, const Sample& sb,
+                                                         const Vec3* na_known,
+                                                         const Vec3* nb_known) const {
+  const double a = sa.t, b = sb.t, h = b - a;
   const double step = s_.path->correction_step(src_);
-  const double A = table_.accel_xy(), h = b - a;
-  // rho's range, the centre's top speed in plan, and the range [c_lo, c_hi] of the moment of its
-  // velocity about the node, q x v (q the node's offset from the axis).
-  double rho_lo, rho_hi, v, c_lo, c_hi, length = INFINITY, box_z_lo = NAN;
+  const double A = table_.accel_xy();
   const double first_knot = step > 0 ? std::max(0.0, std::floor(a / step) + 1) * step : INFINITY;
-  const bool knot_inside = step > 0 && first_knot < b && first_knot <= last_knot();
-  if (!knot_inside) {
-    // One smooth piece: the (tabulated) centre lies within A h^2 / 8 of its chord (plus round-off
-    // ), its speed within A h / 2 of the larger at the ends, and q x v (whose rate is q x v', as
-    // q' = -v) within rho A h / 2 of the range at the ends.
-    // The correction's slope is one over the piece: the one starting at a (at b a knot may
-    // start the next).
-    const Vec3 &ca = sa.c, &cb = sb.c, va = sa.v + sa.dv, vb = sb.v + sa.dv;
-    const double sag = A * h * h / 8 + 1e-12;
-    const double u = nearest_on_chord(ca, cb);
-    const double ax = x_ - ca.x(), ay = y_ - ca.y(), bx = x_ - cb.x(), by = y_ - cb.y();
-    rho_lo = std::max(0.0, norm(ax - u * (cb.x() - ca.x()), ay - u * (cb.y() - ca.y())) - sag);
-    rho_hi = std::max(norm(ax, ay), norm(bx, by)) + sag;
-    v = std::max(norm(va.x(), va.y()), norm(vb.x(), vb.y())) + A * h / 2;
-    const double m_a = ax * va.y() - ay * va.x(), m_b = bx * vb.y() - by * vb.x();
-    const double slack = rho_hi * A * h / 2;
-    c_lo = std::min(m_a, m_b) - slack, c_hi = std::max(m_a, m_b) + slack;
+  PlanRegion r;
+  r.knot_inside = step > 0 && first_knot < b && first_knot <= last_knot();
+  if (!r.knot_inside) {
+    r.ca = sa.c, r.cb = sb.c, r.grow = A * h * h / 8 + 1e-12;
+    const Vec3 va = sa.v + sa.dv, vb = sb.v + sa.dv;
+    r.v = std::max(norm(va.x(), va.y()), norm(vb.x(), vb.y())) + A * h / 2;
   } else {
-    // Several pieces of the correction: the centre is the nominal one (within its sagitta of
-    // the chord) moved by a correction within the box it keeps to over [a, b]; so within the
-    // chord moved to the box's middle, thickened by the sagitta and the box's half diagonal (a
-    // convex region, as advance() needs).
     const CorrectionBounds box = table_.correction_bounds(a, b);
     const Vec3 &lo = box.lo, &hi = box.hi, mid = 0.5 * (lo + hi);
     const Vec3 na = na_known ? *na_known : table_.nominal(a);
-    const Vec3 nb = nb_known ? *nb_known : table_.nominal(b), ca = na + mid, cb = nb + mid;
-    box_z_lo = lo.z();
-    const double grow = A * h * h / 8 + 0.5 * norm(hi.x() - lo.x(), hi.y() - lo.y()) + 1e-12;
-    const double u = nearest_on_chord(ca, cb);
-    const double ax = x_ - ca.x(), ay = y_ - ca.y(), bx = x_ - cb.x(), by = y_ - cb.y();
-    rho_lo = std::max(0.0, norm(ax - u * (cb.x() - ca.x()), ay - u * (cb.y() - ca.y())) - grow);
-    rho_hi = std::max(norm(ax, ay), norm(bx, by)) + grow;
-    v = s_.window[win_].nominal_speed.first + box.speed_xy;
-    c_hi = rho_hi * v, c_lo = -c_hi;
-    // The centre's path: the nominal one's at most its top speed a second, the correction's
-    // its own pieces' lengths.
-    length = s_.window[win_].nominal_speed.first * h + table_.correction_length(a, b);
+    const Vec3 nb = nb_known ? *nb_known : table_.nominal(b);
+    r.ca = na + mid, r.cb = nb + mid;
+    r.box_z_lo = lo.z();
+    r.grow = A * h * h / 8 + 0.5 * norm(hi.x() - lo.x(), hi.y() - lo.y()) + 1e-12;
+    r.v = s_.window[win_].nominal_speed.first + box.speed_xy;
+    // The centre's path: the nominal one's at most its top speed a second, the correction's its
+    // own pieces' lengths.
+    r.length = s_.window[win_].nominal_speed.first * h + table_.correction_length(a, b);
   }
-  Span out = bound_rates(rho_lo, rho_hi, v, c_lo, c_hi, A, knot_inside, length);
-  out.plan_lo = rho_lo, out.box_z_lo = box_z_lo;
+  const Vec3 &ca = r.ca, &cb = r.cb;
+  const double u = nearest_on_chord(ca, cb);
+  const double ax = x_ - ca.x(), ay = y_ - ca.y(), bx = x_ - cb.x(), by = y_ - cb.y();
+  r.lo = std::max(0.0, norm(ax - u * (cb.x() - ca.x()), ay - u * (cb.y() - ca.y())) - r.grow);
+  r.hi = std::max(norm(ax, ay), norm(bx, by)) + r.grow;
+  return r;
+}
+
+// One span for both postures: the plan region first, then the moving point's bounds, the node's
+// offset from the axis itself for a vertical tool, its lift into the tool frame for a tilted one.
+PassageGeometry::Span PassageGeometry::span(const Sample& sa, const Sample& sb, const Vec3* na,
+                                            const Vec3* nb) const {
+  const PlanRegion r = plan_region(sa, sb, na, nb);
+  Span out = tilted_ ? lifted_rates(sa, sb, r) : plan_rates(sa, sb, r);
+  out.plan_lo = r.lo, out.box_z_lo = r.box_z_lo;
   return out;
+}
+
+// A vertical tool: the moving point is the node's offset q from the axis, whose distance is the
+// region's; its velocity about the node's moment, q x v (whose rate is q x v', as q' = -v), lies
+// within rho A h / 2 of the range at the ends on a smooth piece, and within rho_hi v in size
+// otherwise.
+PassageGeometry::Span PassageGeometry::plan_rates(const Sample& sa, const Sample& sb,
+                                                  const PlanRegion& r) const {
+  const double A = table_.accel_xy(), h = sb.t - sa.t;
+  double c_lo, c_hi;
+  if (!r.knot_inside) {
+    const Vec3 &ca = r.ca, &cb = r.cb, va = sa.v + sa.dv, vb = sb.v + sa.dv;
+    const double ax = x_ - ca.x(), ay = y_ - ca.y(), bx = x_ - cb.x(), by = y_ - cb.y();
+    const double m_a = ax * va.y() - ay * va.x(), m_b = bx * vb.y() - by * vb.x();
+    const double slack = r.hi * A * h / 2;
+    c_lo = std::min(m_a, m_b) - slack, c_hi = std::max(m_a, m_b) + slack;
+  } else {
+    c_hi = r.hi * r.v, c_lo = -c_hi;
+  }
+  return bound_rates(r.lo, r.hi, r.v, c_lo, c_hi, A, r.knot_inside, r.length);
 }
 
 PassageGeometry::Span PassageGeometry::bound_rates(double rho_lo, double rho_hi, double v,
@@ -142,44 +160,20 @@ bool PassageGeometry::lifted(double t, const Vec3& c, const Vec3& v, Vec3& p, Ve
 // moved by the correction's box, as for a vertical tool) lifts into the chord between its ends'
 // lifts thickened by the lift's bend over it (R^2 len^2 / 8 h^3 for a straight plan segment of
 // length len) and L times the region's own thickness. The turn by the frame is a rotation.
-PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sample& sb,
-                                                   const Vec3* na_known,
-                                                   const Vec3* nb_known) const {
+PassageGeometry::Span PassageGeometry::lifted_rates(const Sample& sa, const Sample& sb,
+                                                    const PlanRegion& r) const {
   const double a = sa.t, b = sb.t, h_t = b - a;
-  const double step = s_.path->correction_step(src_);
   const double A = table_.accel_xy();
-  const double first_knot = step > 0 ? std::max(0.0, std::floor(a / step) + 1) * step : INFINITY;
-  const bool knot_inside = step > 0 && first_knot < b && first_knot <= last_knot();
-  // The plan region first: its chord, thickness, the plan offset's range and top speed.
-  Vec3 ca, cb;
-  double grow, v_plan, box_z_lo = NAN;
-  if (!knot_inside) {
-    ca = sa.c, cb = sb.c, grow = A * h_t * h_t / 8 + 1e-12;
-    const Vec3 va = sa.v + sa.dv, vb = sb.v + sa.dv;
-    v_plan = std::max(norm(va.x(), va.y()), norm(vb.x(), vb.y())) + A * h_t / 2;
-  } else {
-    const CorrectionBounds box = table_.correction_bounds(a, b);
-    const Vec3 &lo = box.lo, &hi = box.hi, mid = 0.5 * (lo + hi);
-    const Vec3 na = na_known ? *na_known : table_.nominal(a);
-    const Vec3 nb = nb_known ? *nb_known : table_.nominal(b);
-    ca = na + mid, cb = nb + mid;
-    box_z_lo = lo.z();
-    grow = A * h_t * h_t / 8 + 0.5 * norm(hi.x() - lo.x(), hi.y() - lo.y()) + 1e-12;
-    v_plan = s_.window[win_].nominal_speed.first + box.speed_xy;
-  }
-  const double u = nearest_on_chord(ca, cb);
-  const double ax = x_ - ca.x(), ay = y_ - ca.y(), bx = x_ - cb.x(), by = y_ - cb.y();
-  const double plan_lo =
-      std::max(0.0, norm(ax - u * (cb.x() - ca.x()), ay - u * (cb.y() - ca.y())) - grow);
-  const double plan_hi = std::max(norm(ax, ay), norm(bx, by)) + grow;
+  const bool knot_inside = r.knot_inside;
+  const Vec3 &ca = r.ca, &cb = r.cb;
+  const double grow = r.grow, v_plan = r.v;
   Span none{0, s_.R, INFINITY, INFINITY, INFINITY, 0};
-  none.plan_lo = plan_lo;
-  if (plan_lo >= s_.R) {  // off the ball all along (and so out of contact)
+  if (r.lo >= s_.R) {  // off the ball all along (and so out of contact)
     none.rho_lo = s_.R;
     return none;
   }
   // Next to the ball's rim in plan the lift has no bound (the ball point moves vertically).
-  const Lift lift = lift_bounds(s_.R, plan_hi, v_plan, A);
+  const Lift lift = lift_bounds(s_.R, r.hi, v_plan, A);
   if (lift.hz < 1e-6 * s_.R) return none;
   const double h = lift.hz, L = lift.L;
   Vec3 pa, pb, da, db;
@@ -211,13 +205,10 @@ PassageGeometry::Span PassageGeometry::span_tilted(const Sample& sa, const Sampl
     c_hi = (ends_hi + thick) * v, c_lo = -c_hi;
     accel = INFINITY;
     // The lift stretches the plan path by at most L, and the frame's turn adds its own.
-    length = L * (s_.window[win_].nominal_speed.first * h_t + table_.correction_length(a, b)) +
-             turn_speed() * h_t;
+    length = L * r.length + turn_speed() * h_t;
   }
   const double rho_lo = std::max(0.0, chord_lo - thick), rho_hi = ends_hi + thick;
-  Span out = bound_rates(rho_lo, rho_hi, v, c_lo, c_hi, accel, knot_inside, length);
-  out.plan_lo = plan_lo, out.box_z_lo = box_z_lo;
-  return out;
+  return bound_rates(rho_lo, rho_hi, v, c_lo, c_hi, accel, knot_inside, length);
 }
 
 bool PassageGeometry::turns_by(double lo, double hi, double turn) const {
@@ -279,7 +270,7 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
   const double half = 0.5 * s_.rev, w = std::abs(s_.omega);
   if (tilted_) {
     // The same in the tool frame, where the ball point moves at most L = R / h times as fast as
-    // the plan offset (span_tilted), h from the farthest the node gets from the centre in plan
+    // the plan offset (lifted_rates), h from the farthest the node gets from the centre in plan
     // over the half revolution.
     // The lag's slope first over the whole ball (gap_lag: one number), then only as far out as
     // the point gets.

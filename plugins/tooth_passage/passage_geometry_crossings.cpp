@@ -69,8 +69,8 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   // with no lag turning there: the azimuth stands still, so G' = omega and the bound is tight), a
   // crossing inside a piece makes |g_a| + |g_b| equal its reach but for that round-off, which must
   // not rule the crossing out: without the allowance it does in 158 of the 360 windows of
-  // tests/plugins/exact_window_test.cpp, and on the convex case's pass line a crossing 0.11 nm
-  // below the tip's cut is lost so.
+  // tests/plugins/tooth_passage/passage_geometry_crossings_test.cpp, and on the convex case's pass
+  // line a crossing 0.11 nm below the tip's cut is lost so.
   const double roundoff = 32 * std::numeric_limits<double>::epsilon() *
                           (w * std::max(std::abs(a), std::abs(b)) + std::abs(phase_) + 8 * M_PI);
   // Tooth j's phase is tooth 0's turned by its angle: one probe serves all.

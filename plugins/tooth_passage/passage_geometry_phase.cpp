@@ -63,41 +63,36 @@ bool PassageGeometry::land(const Sample& at, double r, double lag_rate, double& 
   const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
   if (!(r2 < s_.R2)) return false;
   const double below = std::sqrt(s_.R2 - r2);
-  double rho = std::sqrt(r2);
-  bool over = rho >= rho_lo_ && rho <= rho_hi_;
-  if (tilted_) {
-    const Vec3 p = to_tool_ * Vec3(dx, dy, -below);
-    rho = std::sqrt(p.x() * p.x() + p.y() * p.y());
-    over = p.z() <= 0 && rho >= rho_lo_ && rho <= rho_hi_;
-  }
+  // The ball point through the frame map (land() is refused on a turning frame: it is fixed).
+  const Vec3 p = tilted_ ? Vec3(to_tool_ * Vec3(dx, dy, -below)) : Vec3(dx, dy, -below);
+  const double rho = std::sqrt(p.x() * p.x() + p.y() * p.y());
+  const bool over = p.z() <= 0 && rho >= rho_lo_ && rho <= rho_hi_;
   t = t1;
   q = {over, 0.0, c.z() - below, rho, q.lag + lag_rate * dt};
   return true;
 }
 
 double PassageGeometry::rate(const Sample& at, const Vec3& dv, double* lag_rate) const {
+  // The moving point through the frame map, and its velocity: the node's offset q from the axis
+  // (q' = -v) for a vertical tool, the ball point over the node in the tool frame for a tilted one.
+  Vec3 p, dp;
   if (tilted_) {
-    // The same in the tool frame: q the ball point's offset from the axis, q' its velocity.
-    Vec3 p, dp;
     if (!lifted(at.t, at.c, at.v + dv, p, dp)) return NAN;
-    const double r2 = p.x() * p.x() + p.y() * p.y();
-    if (!(r2 > 0)) return NAN;
-    const double du = (p.x() * dp.x() + p.y() * dp.y()) / r2,
-                 daz = (p.x() * dp.y() - p.y() * dp.x()) / r2;
-    const double sin_a = std::sqrt(r2) / s_.R;
-    if (sin_a >= 1) return NAN;
-    const double lag = s_.lag_shape.slope(sin_a, std::abs(p.z()) / s_.R, *s_.tool) * du;
-    if (lag_rate) *lag_rate = lag;
-    return s_.omega + lag - daz;
+  } else {
+    const Vec3 v = at.v + dv;
+    p = Vec3(x_ - at.c.x(), y_ - at.c.y(), 0.0), dp = Vec3(-v.x(), -v.y(), 0.0);
   }
-  const Vec3 &c = at.c, v = at.v + dv;
-  const double qx = x_ - c.x(), qy = y_ - c.y(), r2 = qx * qx + qy * qy;
+  const double r2 = p.x() * p.x() + p.y() * p.y();
   if (!(r2 > 0)) return NAN;
-  // q' = -v: u' = (q . q') / r2, az' = (q x q') / r2.
-  const double du = -(qx * v.x() + qy * v.y()) / r2, daz = -(qx * v.y() - qy * v.x()) / r2;
+  // u' = (p . p') / r2 (u = ln rho), az' = (p x p') / r2.
+  const double du = (p.x() * dp.x() + p.y() * dp.y()) / r2,
+               daz = (p.x() * dp.y() - p.y() * dp.x()) / r2;
   const double sin_a = std::sqrt(r2) / s_.R;
   if (sin_a >= 1) return NAN;
-  const double lag = s_.lag_shape.slope(sin_a, std::sqrt(1 - sin_a * sin_a), *s_.tool) * du;
+  // The polar angle's cosine: the ball point's depth in the tool frame (from the sine where the
+  // frame is the workpiece's).
+  const double cos_a = tilted_ ? std::abs(p.z()) / s_.R : std::sqrt(1 - sin_a * sin_a);
+  const double lag = s_.lag_shape.slope(sin_a, cos_a, *s_.tool) * du;
   if (lag_rate) *lag_rate = lag;
   return s_.omega + lag - daz;
 }

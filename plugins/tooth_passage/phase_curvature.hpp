@@ -12,7 +12,8 @@
 // term likewise at most S rho |q''|. Hence
 // |G''| <= (k2 + S) v^2 / rho_lo^2 + S accel / rho_lo: for a straight pass at distance d with no
 // lag, v^2 / d^2, where the true largest is 0.65 v^2 / d^2 (at 0.58 d either side of the closest
-// approach). tests/plugins/phase_curvature_test.cpp samples G'' along random paths against it.
+// approach). tests/plugins/tooth_passage/phase_curvature_test.cpp samples G'' along random paths
+// against it.
 //
 // The same bound C limits how far G can stray over a piece of length h from its values and rates
 // at the ends (phase_range). Between its ends G is highest at an end or at a peak s inside, where
@@ -21,9 +22,9 @@
 // rising); from the right end likewise (falling in s). Their difference is linear in s: they
 // meet at one s, which bounds the peak exactly, or where that lies outside the peak's possible
 // places, the nearer of those does. A cap of curvature C meets the bound at its top
-// (tests/plugins/phase_curvature_test.cpp). Near a turn-back of the phase, where no monotone
-// proof exists, a piece whose range holds no crossing level is then settled without halving
-// (crossings_in).
+// (tests/plugins/tooth_passage/phase_curvature_test.cpp). Near a turn-back of the phase, where no
+// monotone proof exists, a piece whose range holds no crossing level is then settled without
+// halving (crossings_in).
 #pragma once
 
 #include <algorithm>

@@ -1,8 +1,8 @@
-// What the tests of tooth_passage's pieces (land_test, exact_window_test, line_rates_test,
-// lined_zone_test) share: the paper's scene at lambda 0 on a given workpiece, prepared, and its
-// PassageSetup; the scenes about a pass's line; the pass whose line is nearest the patch's middle;
-// and a window's crossings found with no bound and no rule, by sampling a tooth's phase and
-// bisecting each sign change with probes.
+// What the tests of tooth_passage's pieces
+// (tests/plugins/tooth_passage/passage_geometry_*_test.cpp) share: the paper's scene at lambda 0 on
+// a given workpiece, prepared, and its PassageSetup; the scenes about a pass's line; the pass whose
+// line is nearest the patch's middle; and a window's crossings found with no bound and no rule, by
+// sampling a tooth's phase and bisecting each sign change with probes.
 #pragma once
 
 #include <cmath>
@@ -40,8 +40,8 @@ inline topomill::plugins::PassageSetup passage_setup(const topomill::Prepared& m
   return topomill::plugins::PassageSetup(rq, 0.1, 12);
 }
 
-// A scene of the tests about a pass's line (line_rates_test, lined_zone_test): paper_patch's
-// workpiece and overrides.
+// A scene of the tests about a pass's line (passage_geometry_bounds_test,
+// passage_geometry_lined_test): paper_patch's workpiece and overrides.
 struct LineCase {
   const char* name;
   std::string workpiece;
@@ -69,6 +69,21 @@ inline std::size_t nearest_pass(const topomill::plugins::PassageSetup& s) {
   for (std::size_t k = 1; k < s.window.size(); ++k)
     if (std::abs(s.window[k].line) < std::abs(s.window[p].line)) p = k;
   return p;
+}
+
+// The node `d` across the line of pass p and `along` on it, under that pass: where it is, its
+// level time, and its geometry (the contact range from the level time, as the walks take it).
+struct NodeOnLine {
+  double x, y, t0;
+  topomill::plugins::PassageGeometry geo;
+};
+inline NodeOnLine node_by_line(const topomill::plugins::PassageSetup& s, std::size_t p, double d,
+                               double along) {
+  const double x = s.along_y ? s.window[p].line + d : along,
+               y = s.along_y ? along : s.window[p].line + d;
+  const double t0 = s.level_time(p, x, y);
+  const auto radii = s.contact_radii(p, t0);
+  return {x, y, t0, topomill::plugins::PassageGeometry(s, p, x, y, radii.first, radii.second)};
 }
 
 // Tooth `tooth`'s crossings in [a, b]: the phase sampled every `step`, each sign change (not a

@@ -36,12 +36,10 @@ TEST_CASE("the side of a pass's line bounds the phase's rate", "[tooth_passage][
                            0.01, 0.02, 0.05, 0.2}) {
       REQUIRE(s.window[p].plan_line.along_lo > 0);
       INFO("pass " << p << " (line " << s.window[p].line << " mm), d " << d << " mm");
-      const double x = s.along_y ? s.window[p].line + d : 0.0,
-                   y = s.along_y ? 0.0 : s.window[p].line + d;
-      const double t0 = s.level_time(p, x, y);
+      const testing::NodeOnLine node = testing::node_by_line(s, p, d, 0.0);
+      const double t0 = node.t0;
       REQUIRE(std::isfinite(t0));
-      const auto radii = s.contact_radii(p, t0);
-      const PassageGeometry geo(s, p, x, y, radii.first, radii.second);
+      const PassageGeometry& geo = node.geo;
       const auto [fall, rise] = geo.line_rates(out);
       REQUIRE(std::isfinite(fall));
       // The samples' extremes of the rate's departure from the spindle's, in its sense.

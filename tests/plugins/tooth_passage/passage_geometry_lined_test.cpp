@@ -1,5 +1,5 @@
-// tooth_passage's direct zone (PassageGeometry::crossings_lined, lined_zone.cpp): where the
-// window's centre keeps to its line, the phase's turning points are solved as the zeros of a
+// tooth_passage's direct zone (PassageGeometry::crossings_lined, passage_geometry_lined.cpp): where
+// the window's centre keeps to its line, the phase's turning points are solved as the zeros of a
 // convex function and each tooth's levels between them. Its promise is crossings_in's: the
 // crossings in [a, b] that can lie below `below` (the rest may be left out), so the lowest under
 // the ball below `below` is found, and everything returned is a crossing. Checked here against
@@ -52,12 +52,10 @@ TEST_CASE("the direct zone finds the lowest crossing the halving finds",
   for (const std::size_t p : {middle, middle + 1})
     for (const double d :
          {-0.05, -0.02, -0.01, -0.005, -0.002, -0.001, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05}) {
-      const double x = s.along_y ? s.window[p].line + d : 0.013,
-                   y = s.along_y ? 0.013 : s.window[p].line + d;
-      const double t0 = s.level_time(p, x, y);
+      const testing::NodeOnLine node = testing::node_by_line(s, p, d, 0.013);
+      const double t0 = node.t0;
       REQUIRE(std::isfinite(t0));
-      const auto radii = s.contact_radii(p, t0);
-      const PassageGeometry geo(s, p, x, y, radii.first, radii.second);
+      const PassageGeometry& geo = node.geo;
       REQUIRE(geo.lined());
       const double rev = s.rev;
       for (const auto& [from, length] : std::vector<std::pair<double, double>>{{-0.0625, 0.125},

@@ -11,9 +11,9 @@
 #include <cmath>
 #include <functional>
 
-#include "tooth_passage/row_sweep.hpp"
+#include "tooth_passage/root.hpp"
 
-using Root = topomill::plugins::RowSweep::Root;
+using Root = topomill::plugins::Root;
 
 namespace {
 

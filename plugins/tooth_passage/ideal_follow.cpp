@@ -1,0 +1,283 @@
+#include "ideal_follow.hpp"
+
+#include <algorithm>
+
+namespace topomill::plugins {
+
+namespace {
+// A walk never takes more steps than this in one direction (a guard: the stops end it first).
+constexpr int kMaxSteps = 100000;
+}  // namespace
+
+IdealFollow::IdealFollow(const PassageGeometry& geo, std::vector<std::vector<Root>>& roots,
+                         Scratch& scratch, NodeCounts& counts)
+    : s_(geo.setup()),
+      geo_(geo),
+      roots_(roots),
+      scratch_(scratch),
+      counts_(counts),
+      rev_(s_.rev),
+      t_lo_(geo.t_lo()),
+      t_hi_(geo.t_hi()),
+      w_(std::abs(s_.omega)),
+      beyond_(0.05 * s_.period) {}
+
+double IdealFollow::run(double t_b, double best_node) {
+  t_b_ = t_b, best_node_ = best_node, best_ = INFINITY;
+  scratch_.zone.clear();
+  zone_[0] = zone_[1] = t_b;
+  solve_zone();
+  for (int tooth = 0; tooth < s_.teeth; ++tooth) follow(tooth);
+  counts_.passages += visited_;
+  return best_;
+}
+
+double IdealFollow::take(int tooth, double t, const Probe* known) {
+  if (!geo_.within(t)) return INFINITY;
+  const Probe q = known ? *known : geo_.probe(tooth, t);
+  ++visited_;
+  if (!std::isfinite(q.height)) return INFINITY;
+  if (q.over) best_ = std::min(best_, q.height);
+  return q.height;
+}
+
+void IdealFollow::keep(const PassageGeometry::Crossing& c, std::vector<Root>& into) {
+  const Root* match = nearest(roots_[static_cast<std::size_t>(c.tooth)], c.t, kSamePassage * rev_);
+  into.push_back(Root::followed(c.t, match, match ? match->slope : s_.omega));
+}
+
+void IdealFollow::exact(int tooth, double lo, double hi) {
+  ++counts_.exact_windows, exact_used_ = true;
+  double limit = std::min(best_, best_node_);
+  std::vector<PassageGeometry::Crossing>& found = scratch_.found;
+  found.clear();
+  const double a = std::max(lo, t_lo_), b = std::min(hi, t_hi_);
+  if (tooth < 0) edge_probe_at_[0] = a, edge_probe_at_[1] = b;
+  // The direct solve starts from where the last node's roots lead.
+  scratch_.hints.clear();
+  if (geo_.lined())
+    for (int j = std::max(tooth, 0); j < (tooth < 0 ? s_.teeth : tooth + 1); ++j)
+      for (const Root& r : roots_[static_cast<std::size_t>(j)])
+        scratch_.hints.push_back({j, r.ahead()});
+  geo_.crossings(tooth, a, b, limit, found, tooth < 0 ? edge_probe_ : nullptr, &scratch_.hints);
+  for (const auto& r : found) {
+    take(r.tooth, r.t, &r.q);
+    if (tooth < 0)
+      scratch_.zone.push_back(r);
+    else
+      keep(r, scratch_.fresh);
+  }
+}
+
+bool IdealFollow::prove_edge(int side) {
+  const double edge = zone_[side], far = edge + (side ? kAhead : -kAhead) * rev_;
+  beyond_edge_[side] = geo_.span(std::min(edge, far), std::max(edge, far));
+  return edge_proven_[side] = beyond_edge_[side].monotone(w_);
+}
+
+void IdealFollow::solve_zone() {
+  const double t_b = t_b_, rev = rev_;
+  if (geo_.monotone_around(t_b, 0.8 * rev) || geo_.monotone(t_b - 0.8 * rev, t_b + 0.8 * rev))
+    return;
+  // Each edge as near t_b as the phase is proven monotone beyond it, by eighths of a revolution
+  // (the axis's closest approach holds the turn-backs, so a whole revolution solved exactly is
+  // mostly pieces far from it); from half a revolution out, by whole ones (below).
+  for (int side = 0; side < 2; ++side) {
+    const double dir = side ? 1.0 : -1.0;
+    for (int k = 1; k <= 4; ++k)
+      if (zone_[side] = t_b + dir * k * rev / 8; k == 4 || prove_edge(side)) break;
+  }
+  exact(-1, zone_[0], zone_[1]);
+  for (int side = 0; side < 2; ++side) {
+    const double dir = side ? 1.0 : -1.0;
+    double& edge = zone_[side];
+    // (On a steep face this can walk a whole pass, revolution by revolution, for one node: a
+    // stop request is checked at each.)
+    while (!edge_proven_[side] && (dir > 0 ? edge < t_hi_ + rev / 2 : edge > t_lo_ - rev / 2) &&
+           !s_.stopped() && geo_.envelope(edge) < std::min(best_, best_node_) &&
+           !prove_edge(side)) {
+      exact(-1, std::min(edge, edge + dir * rev), std::max(edge, edge + dir * rev));
+      edge += dir * rev;
+    }
+  }
+}
+
+double IdealFollow::solve(int tooth, double guess, double reach, Probe& q, const Root*& matched,
+                          const Root* hint) {
+  const Root* match = hint;
+  if (!match)
+    for (const Root& r : *prev_)
+      if (std::abs(r.t + r.drift - guess) < reach)
+        reach = std::abs(r.t + r.drift - guess), match = &r;
+  matched = match;
+  double slope = match ? match->slope : s_.omega;
+  // Started where the root's last moves say it goes on to (Root::ahead: on smooth passes the
+  // guess is then often within the tolerance, and one probe settles it).
+  const double t = geo_.crossing(tooth, match ? match->ahead() : guess, slope, q);
+  if (!PassageGeometry::converged(q)) return NAN;
+  // The root kept for the next node is one more Newton step on (no probe): the probed time is up
+  // to 1e-9 rad off, which the extrapolation amplifies, so that on smooth passes the next node's
+  // guess would often miss the tolerance by that alone. The height stays the probe's.
+  scratch_.fresh.push_back(Root::followed(t - q.g / slope, match, slope));
+  return t;
+}
+
+void IdealFollow::follow(int tooth) {
+  prev_ = &roots_[static_cast<std::size_t>(tooth)];
+  std::vector<Root>& fresh = scratch_.fresh;
+  fresh.clear();
+  for (const auto& r : scratch_.zone)
+    if (r.tooth == tooth) keep(r, fresh);
+  const bool zoned = zone_[1] > zone_[0];
+  // The first crossing: near t_b where the phase is monotone around it (the secant can run off
+  // elsewhere: then, as where it is not monotone, the revolution around t_b exactly).
+  Probe first{};
+  double t_first = NAN;
+  const Root* first_match = nullptr;
+  if (!zoned) {
+    t_first = solve(tooth, t_b_, 0.75 * rev_, first, first_match);
+    if (std::isnan(t_first) || std::abs(t_first - t_b_) > 0.75 * rev_) {
+      t_first = NAN;
+      exact(tooth, t_b_ - 0.5 * rev_, t_b_ + 0.5 * rev_);
+    }
+  }
+  const bool first_root = !std::isnan(t_first);
+  const double first_height = first_root ? take(tooth, t_first, &first) : INFINITY;
+  const double first_rate = first_root ? fresh.back().slope : NAN;  // (solve's, just pushed)
+  for (int dir : {+1, -1}) {
+    Cursor c{first_root ? t_first
+             : zoned    ? zone_[dir > 0]
+                        : t_b_ + dir * 0.5 * rev_,
+             first_root,
+             first.rho,
+             first,
+             first_rate,
+             first_root ? first_match : nullptr,
+             {}};
+    if (first_root) c.rise.add(first_height);
+    for (int m = 1; m < kMaxSteps && !c.rise.done(); ++m)
+      if (!step(tooth, dir, c)) break;
+  }
+  std::sort(fresh.begin(), fresh.end(), [](const Root& a, const Root& b) { return a.t < b.t; });
+  prev_->swap(fresh);
+}
+
+bool IdealFollow::ends_at(int dir, double t_bound) const {
+  // Past the bottom the envelope only rises: if it is already too high at t_bound, no later
+  // passage can lower the node.
+  return dir * (t_bound - t_b_) >= beyond_ && geo_.envelope(t_bound) >= std::min(best_, best_node_);
+}
+
+bool IdealFollow::ends_before_next(int dir, const Cursor& c) const {
+  // The gap to the next crossing (at most half a revolution) is asked only where that would end
+  // the walk; where the envelope is too high at the root itself, it is at the next crossing
+  // however soon that comes, and the gap need not be proven.
+  if (ends_at(dir, c.at_root ? c.t + dir * 0.5 * rev_ : c.t))
+    return !c.at_root || ends_at(dir, c.t) ||
+           ends_at(dir, c.t + dir * geo_.next_gap(c.t, c.rho, dir));
+  // Where the phase runs slow (the node's azimuth turning against the spindle as the axis
+  // passes), the next crossing can lie more than half a revolution on, where the envelope is
+  // already too high: the pass's line bounds how soon it can come (line_gap), and the walk ends
+  // without solving it. Asked only where the rate at the root says the next crossing comes that
+  // late, too high.
+  if (c.at_root && geo_.lined() && std::abs(c.rate) < w_ &&
+      ends_at(dir, c.t + dir * kTwoPi / std::abs(c.rate))) {
+    const double line = geo_.line_gap(c.rho, kAhead * rev_);
+    return line > 0.5 * rev_ && ends_at(dir, c.t + dir * line);
+  }
+  return false;
+}
+
+void IdealFollow::solve_revolution(int tooth, int dir, Cursor& c) {
+  exact(tooth, std::min(c.t, c.t + dir * rev_), std::max(c.t, c.t + dir * rev_));
+  c.t += dir * rev_, c.at_root = false;
+}
+
+bool IdealFollow::step(int tooth, int dir, Cursor& c) {
+  // Past the window's end the walk goes (the first root may lie beyond its other end: a window
+  // can be shorter than a revolution).
+  if (dir > 0 ? c.t > t_hi_ + rev_ / 2 : c.t < t_lo_ - rev_ / 2) return false;
+  if (ends_before_next(dir, c)) return false;
+  const double far = c.t + dir * kAhead * rev_;
+  // Where the phase is monotone all along (most nodes), no span is asked: the step's turn is read
+  // exactly from its probes (proven_next).
+  const bool easy = c.at_root && geo_.monotone_from(c.rho, kAhead * rev_);
+  PassageGeometry::Span ahead{};
+  if (!easy) {
+    const int side = dir > 0;
+    ahead = !c.at_root && zone_[1] > zone_[0] && c.t == zone_[side] && edge_proven_[side]
+                ? beyond_edge_[side]
+                : geo_.span(std::min(c.t, far), std::max(c.t, far));
+    if (!ahead.monotone(w_)) return solve_revolution(tooth, dir, c), true;
+  }
+  double guess = c.t + dir * rev_, gap = 0;
+  if (c.at_root) {
+    // From a root: a turn at the phase's rate there (Newton's last slope), where that is within a
+    // factor 2 of the spindle's. Near the axis the rate differs from the spindle's by the node's
+    // azimuth rate, and a revolution's guess would take two more Newton steps where the last node
+    // gave no root to start from.
+    const double r = std::abs(c.rate);
+    if (r > 0.5 * w_ && r < 2 * w_) guess = c.t + dir * kTwoPi / r;
+  } else {
+    // From an edge: the next crossing is where the phase has turned on to its next zero.
+    const int side = dir > 0;
+    c.q = c.t == edge_probe_at_[side] ? geo_.turned_to(edge_probe_[side], tooth)
+                                      : geo_.probe(tooth, c.t);
+    gap = dir * s_.omega > 0 ? -c.q.g : c.q.g;
+    gap -= kTwoPi * std::floor(gap / kTwoPi);  // the turn still to go, in [0, 2 pi)
+    // That turn takes at least gap / top (the span just proven monotone bounds the rate): where
+    // the envelope is already too high there, no crossing beyond the edge can lower the node.
+    if (ends_at(dir, c.t + dir * gap / ahead.top(w_))) return false;
+    guess = c.t + dir * gap / w_;
+  }
+  // From a root that was the last node's too, the next is where the last node's next was (where
+  // the rate at the root would put it, the phase may speed up across the axis's closest approach
+  // and the guess skip a crossing: a revolution then solved exactly).
+  const Root* hint = nullptr;
+  if (c.at_root && c.from) {
+    const std::vector<Root>& prev = *prev_;
+    const std::ptrdiff_t next = (c.from - prev.data()) + dir;  // (prev is sorted by time)
+    if (next >= 0 && next < static_cast<std::ptrdiff_t>(prev.size()) &&
+        dir * (prev[next].t + prev[next].drift - c.t) > kSamePassage * rev_)
+      hint = &prev[next];
+  }
+  Probe q{};
+  const double t = solve(tooth, guess, kSamePassage * rev_, q, c.from, hint);
+  if (!proven_next(geo_, tooth, dir, c, t, q, easy, ahead, gap))
+    return solve_revolution(tooth, dir, c), true;
+  c.t = t, c.at_root = true, c.rho = q.rho, c.q = q, c.rate = scratch_.fresh.back().slope;
+  c.rise.add(take(tooth, t, &q));
+  return true;
+}
+
+// After a crossing, t must be the next; after an edge, the first beyond it (a crossing before it
+// was found by the exact solve already: the walk goes on from there). The phase turns by `need`
+// plus whole turns from c.t to t (both ends say so): t is the next when it cannot have turned one
+// more, which the span just proven monotone often shows by its own bound. Else the turn is found
+// exactly: on a span proven monotone the axis stays in a convex region that leaves the node out
+// (monotone needs rho_lo > 0), so the phase's turn across it is known from the probes at its ends
+// (advance); where t lies beyond `far` (the phase slowed: near the axis, on the side where the
+// node's azimuth turns against the spindle), a second span from `far` to t must be monotone too.
+bool IdealFollow::proven_next(const PassageGeometry& geo, int tooth, int dir, const Cursor& c,
+                              double t, const Probe& q, bool easy,
+                              const PassageGeometry::Span& ahead, double gap) {
+  const double rev = geo.setup().rev, w = std::abs(geo.setup().omega);
+  if (std::isnan(t)) return false;
+  const double moved = dir * (t - c.t), need = c.at_root ? kTwoPi : gap;
+  if (!c.at_root && moved < 0) return true;  // behind the edge: the exact solve has it already
+  if (!(moved > (c.at_root ? kSamePassage * rev : 0))) return false;
+  if (moved <= kAhead * rev)
+    // (Less by a margin: where the bound is tight, G' = omega on a pass's line, a solve that went
+    // one turn too far has top * moved = need + 2 pi but for round-off.)
+    return (!easy && ahead.top(w) * moved < need + kTwoPi - 1e-6) ||
+           geo.turned(need, c.t, c.q, t, q);
+  const double far = c.t + dir * kAhead * rev;
+  if (!((c.at_root && geo.monotone_from(c.rho, moved)) || geo.monotone(far, t))) return false;
+  // (Where the centre keeps to a strip that leaves the node out, the turn over the whole step is
+  // exact at once: no probe at `far`.)
+  if (geo.off_strip()) return geo.turned(need, c.t, c.q, t, q);
+  const Probe q_far = geo.probe(tooth, far);
+  return geo.turned(need, c.t, c.q, far, q_far, t, q);
+}
+
+}  // namespace topomill::plugins
