@@ -34,8 +34,8 @@ struct Stretch {
 // A pass's correction samples indexed for range queries: entry k holds sample k's x, y, z and
 // the speeds in plan and along z of piece k (from sample k to k + 1; none after the last sample,
 // where the correction is held), so that one walk of the tree gives a span's box and top speeds
-// together (span() asks both for every piece it bounds: two walks were a third of its cost near
-// the axis with effects). And the length of its path in plan up to each sample (prefix sums),
+// together (span() asks both for every piece it bounds: two walks would be a third of its cost
+// near the axis with effects). And the length of its path in plan up to each sample (prefix sums),
 // for the length over any span in O(1). One per pass, shared by the tables of its windows (each
 // would otherwise hold its own: 8 GB for the radial-then-spiral example's 2 735 windows with
 // effects).
@@ -60,7 +60,7 @@ struct CorrectionIndex {
   static double piece_speed(const ToolPath::Correction& c, std::size_t k, bool plan) {
     const Vec3 d = (c.values[k + 1] - c.values[k]) / c.dt;
     // (sqrt, not hypot: mm/s need no care for overflow, and a span's query reads this at its
-    // ragged ends, where hypot took half of the query's instructions.)
+    // ragged ends, where hypot would take half of the query's instructions.)
     return plan ? std::sqrt(d.x() * d.x() + d.y() * d.y()) : std::abs(d.z());
   }
 };
@@ -99,7 +99,7 @@ class CentreTable {
     throw std::runtime_error("tooth_passage: the tool path is not smooth enough to tabulate");
   }
 
-  Vec3 operator()(double t) const {
+  [[gnu::flatten]] Vec3 operator()(double t) const {
     Vec3 c = nominal(t);
     if (corrected()) c += correction(t);
     return c;

@@ -68,16 +68,14 @@ double CorrectedFollow::walk(double t_b, double best_node, bool& irregular) {
 // only bring these nearer: they stay true.
 void CorrectedFollow::place_stops(double t_b, double target) {
   const double rev = s_.rev, span = geo_.t_hi() - geo_.t_lo();
-  const double beyond = 0.05 * s_.period;  // how near t_b may be off the floor's bottom
+  const double beyond = kBottomTolerance * s_.period;
   for (int side = 0; side < 2; ++side) {
     const double dir = side ? 1.0 : -1.0;
     double& stop = stop_[side];
     if (std::isnan(stop) || dir * (stop - t_b) < beyond) stop = t_b + dir * beyond;
     while (geo_.bound(stop) < target && dir * (stop - t_b) < span + rev && !s_.stopped())
       stop += dir * 0.5 * rev;
-    while (dir * (stop - dir * 0.5 * rev - t_b) >= beyond &&
-           geo_.bound(stop - dir * 0.5 * rev) >= target)
-      stop -= dir * 0.5 * rev;
+    while (geo_.ends_by_bound(t_b, dir, stop - dir * 0.5 * rev, target)) stop -= dir * 0.5 * rev;
   }
 }
 

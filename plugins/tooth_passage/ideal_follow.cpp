@@ -19,8 +19,7 @@ IdealFollow::IdealFollow(const PassageGeometry& geo, std::vector<std::vector<Roo
       rev_(s_.rev),
       t_lo_(geo.t_lo()),
       t_hi_(geo.t_hi()),
-      w_(std::abs(s_.omega)),
-      beyond_(0.05 * s_.period) {}
+      w_(std::abs(s_.omega)) {}
 
 double IdealFollow::run(double t_b, double best_node) {
   t_b_ = t_b, best_node_ = best_node, best_ = INFINITY;
@@ -32,7 +31,7 @@ double IdealFollow::run(double t_b, double best_node) {
   return best_;
 }
 
-double IdealFollow::take(int tooth, double t, const Probe* known) {
+inline double IdealFollow::take(int tooth, double t, const Probe* known) {
   if (!geo_.within(t)) return INFINITY;
   const Probe q = known ? *known : geo_.probe(tooth, t);
   ++visited_;
@@ -41,12 +40,12 @@ double IdealFollow::take(int tooth, double t, const Probe* known) {
   return q.height;
 }
 
-void IdealFollow::keep(const PassageGeometry::Crossing& c, std::vector<Root>& into) {
+inline void IdealFollow::keep(const PassageGeometry::Crossing& c, std::vector<Root>& into) {
   const Root* match = nearest(roots_[static_cast<std::size_t>(c.tooth)], c.t, kSamePassage * rev_);
   into.push_back(Root::followed(c.t, match, match ? match->slope : s_.omega));
 }
 
-void IdealFollow::exact(int tooth, double lo, double hi) {
+inline void IdealFollow::exact(int tooth, double lo, double hi) {
   ++counts_.exact_windows, exact_used_ = true;
   double limit = std::min(best_, best_node_);
   std::vector<PassageGeometry::Crossing>& found = scratch_.found;
@@ -69,13 +68,13 @@ void IdealFollow::exact(int tooth, double lo, double hi) {
   }
 }
 
-bool IdealFollow::prove_edge(int side) {
+inline bool IdealFollow::prove_edge(int side) {
   const double edge = zone_[side], far = edge + (side ? kAhead : -kAhead) * rev_;
   beyond_edge_[side] = geo_.span(std::min(edge, far), std::max(edge, far));
   return edge_proven_[side] = beyond_edge_[side].monotone(w_);
 }
 
-void IdealFollow::solve_zone() {
+inline void IdealFollow::solve_zone() {
   const double t_b = t_b_, rev = rev_;
   if (geo_.monotone_around(t_b, 0.8 * rev) || geo_.monotone(t_b - 0.8 * rev, t_b + 0.8 * rev))
     return;
@@ -102,8 +101,8 @@ void IdealFollow::solve_zone() {
   }
 }
 
-double IdealFollow::solve(int tooth, double guess, double reach, Probe& q, const Root*& matched,
-                          const Root* hint) {
+inline double IdealFollow::solve(int tooth, double guess, double reach, Probe& q,
+                                 const Root*& matched, const Root* hint) {
   const Root* match = hint;
   if (!match)
     for (const Root& r : *prev_)
@@ -122,7 +121,7 @@ double IdealFollow::solve(int tooth, double guess, double reach, Probe& q, const
   return t;
 }
 
-void IdealFollow::follow(int tooth) {
+inline void IdealFollow::follow(int tooth) {
   prev_ = &roots_[static_cast<std::size_t>(tooth)];
   std::vector<Root>& fresh = scratch_.fresh;
   fresh.clear();
@@ -162,13 +161,13 @@ void IdealFollow::follow(int tooth) {
   prev_->swap(fresh);
 }
 
-bool IdealFollow::ends_at(int dir, double t_bound) const {
+inline bool IdealFollow::ends_at(int dir, double t_bound) const {
   // Past the bottom the envelope only rises: if it is already too high at t_bound, no later
   // passage can lower the node.
-  return dir * (t_bound - t_b_) >= beyond_ && geo_.envelope(t_bound) >= std::min(best_, best_node_);
+  return geo_.ends_by_bound(t_b_, dir, t_bound, std::min(best_, best_node_));
 }
 
-bool IdealFollow::ends_before_next(int dir, const Cursor& c) const {
+inline bool IdealFollow::ends_before_next(int dir, const Cursor& c) const {
   // The gap to the next crossing (at most half a revolution) is asked only where that would end
   // the walk; where the envelope is too high at the root itself, it is at the next crossing
   // however soon that comes, and the gap need not be proven.
@@ -188,12 +187,12 @@ bool IdealFollow::ends_before_next(int dir, const Cursor& c) const {
   return false;
 }
 
-void IdealFollow::solve_revolution(int tooth, int dir, Cursor& c) {
+inline void IdealFollow::solve_revolution(int tooth, int dir, Cursor& c) {
   exact(tooth, std::min(c.t, c.t + dir * rev_), std::max(c.t, c.t + dir * rev_));
   c.t += dir * rev_, c.at_root = false;
 }
 
-bool IdealFollow::step(int tooth, int dir, Cursor& c) {
+inline bool IdealFollow::step(int tooth, int dir, Cursor& c) {
   // Past the window's end the walk goes (the first root may lie beyond its other end: a window
   // can be shorter than a revolution).
   if (dir > 0 ? c.t > t_hi_ + rev_ / 2 : c.t < t_lo_ - rev_ / 2) return false;

@@ -96,7 +96,6 @@ class IdealFollow {
   NodeCounts& counts_;
   std::vector<Root>* prev_ = nullptr;  // the tooth in hand's last-node roots
   double rev_, t_lo_, t_hi_, w_;
-  double beyond_;  // how near t_b may be off the envelope's bottom
   double t_b_ = 0, best_node_ = 0, best_ = 0;
   std::uint64_t visited_ = 0;
   bool exact_used_ = false;
@@ -106,11 +105,11 @@ class IdealFollow {
   // Tooth 0's probes at the ends of the zone's last exact solve, and where: the walks from the
   // zone's edges start there (after the zone grew on one side, the other's no longer matches its
   // edge, and is probed again).
-  Probe edge_probe_[2]{};
+  Probe edge_probe_[2];  // (read only where edge_probe_at_ says they were set)
   double edge_probe_at_[2] = {NAN, NAN};
   // The span over 1.1 revolutions beyond each edge, where proven monotone there: the first step
   // of every tooth's walk from that edge needs no other.
-  PassageGeometry::Span beyond_edge_[2]{};
+  PassageGeometry::Span beyond_edge_[2];  // (read only where edge_proven_)
   bool edge_proven_[2] = {false, false};
 };
 

@@ -85,8 +85,8 @@ class LagShape {
   // away from its tip (both built-in edges: the loxodrome's slope grows from tan(helix) at the
   // tip to twice that at 0.95 R), so the largest up to hi is the range's own there. An edge
   // whose slope falls outwards is bounded more loosely than its range, never too low. (A
-  // sparse table of range maxima gives the built-in edges the same bits for 0.6 % more
-  // instructions at lambda 0 and 2.1 % with effects.)
+  // sparse table of range maxima would give the built-in edges the same bits for more
+  // instructions.)
   Bound over(double lo, double hi) const {
     const bool kink = tip_ > 0 && lo <= tip_ && tip_ <= hi;
     if (hi >= R_) return {INFINITY, INFINITY, kink};  // the rim: no bound
@@ -103,8 +103,8 @@ class LagShape {
   static constexpr std::size_t kBins = 4096;
 
   // The bin holding rho, clamped to the table (NaN to the first): truncation is floor where it
-  // converts (rho is not negative there). A division, floor and clamp in doubles cost 3 % of
-  // the ideal walk's instructions at lambda 0 where a range reads two bins.
+  // converts (rho is not negative there). A division, floor and clamp in doubles would cost a few
+  // per cent of the ideal walk's instructions near the axis, where a range reads two bins.
   std::size_t bin(double rho) const {
     const double x = rho * (kBins / R_);
     if (!(x > 0)) return 0;

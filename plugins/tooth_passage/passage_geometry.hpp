@@ -71,9 +71,8 @@ class PassageGeometry {
     return {t, table_(t), table_.nominal_velocity(t), table_.correction_slope(t)};
   }
   // The same, and the nominal centre at t (the centre less the correction) into `nominal`: for
-  // the exact windows' ends, whose spans need it. (sample(t) written as this one with the nominal
-  // discarded cost 1.7 % more instructions at lambda 30 and 2.5 % at lambda 0: every Newton
-  // probe builds a sample.)
+  // the exact windows' ends, whose spans need it. (Kept apart from sample(t), which every Newton
+  // probe builds: the nominal it would discard costs there.)
   Sample sample(double t, Vec3& nominal) const {
     nominal = table_.nominal(t);
     return {t, table_.corrected() ? Vec3(nominal + table_.correction(t)) : nominal,
@@ -178,7 +177,7 @@ class PassageGeometry {
   // rate (within C h^2 / 2: C bounds the lag's own second derivative; advance() reads it to 1e-6).
   // False where that is not proven (a knot or the tip radius within the step, a turning frame,
   // too long a step): a probe must check the step. Near the axis a guess from the last node is 1e-7
-  // to 1e-6 rad off, and this took the second probe, with its atan2 and lag, off most crossings
+  // to 1e-6 rad off, and this takes the second probe, with its atan2 and lag, off most crossings
   // there.
   bool land(const Sample& at, double r, double lag_rate, double& t, Probe& q) const;
 
@@ -191,7 +190,7 @@ class PassageGeometry {
   double bottom(F f, double a, double b) const {
     const double lo = a, hi = b, ratio = 0.5 * (std::sqrt(5.0) - 1);
     double u = b - ratio * (b - a), v = a + ratio * (b - a), fu = f(u), fv = f(v);
-    while (b - a > 0.05 * s_.period) {
+    while (b - a > kBottomTolerance * s_.period) {
       if (fu < fv)
         b = v, v = u, fv = fu, u = b - ratio * (b - a), fu = f(u);
       else
@@ -323,9 +322,9 @@ class PassageGeometry {
   // may exceed 2 omega: no caller needs that bound, only the sign and advance's exactness.
   bool monotone_from(double rho, double duration) const {
     const double v = s_.window[win_].plan_line.speed, out = rho + v * duration;
-    if (out > 0.95 * s_.R) return false;
+    if (out > kRimFraction * s_.R) return false;
     return far_from_line() || clears_line(out) ||
-           (lined() && 1.01 * line_rates(out).first < std::abs(s_.omega));
+           (lined() && kRoom * line_rates(out).first < std::abs(s_.omega));
   }
   // Whether line_rates can know anything here: a window that keeps to its line, the node off it.
   bool lined() const { return s_.window[win_].plan_line.along_lo > 0 && line_gap_ > 0; }
@@ -378,7 +377,7 @@ class PassageGeometry {
   // Whether t is the crossing right after (or before) the crossing t_prev of the same tooth: the
   // phase is monotone between and turns by exactly one turn (nothing between).
   bool next_crossing(double t_prev, double t) const {
-    return std::abs(t - t_prev) > 0.25 * s_.rev &&
+    return std::abs(t - t_prev) > kSamePassage * s_.rev &&
            turns_by(std::min(t, t_prev), std::max(t, t_prev), kTwoPi);
   }
 
@@ -430,9 +429,9 @@ class PassageGeometry {
   // Where crossings_in cuts a piece [lo, hi]: at a correction knot where there is one inside (G'
   // jumps only at knots, so the halves' bounds then hold without one), and of the knots in the
   // piece's middle half at the one whose index has the most trailing zeros: the pieces then keep
-  // to the range table's blocks, whose queries need no scan of ragged ends (4 % of the
-  // instructions at lambda 0 with vibration and deflection). Else the knot nearest the middle,
-  // else the middle.
+  // to the range table's blocks, whose queries need no scan of ragged ends (a few per
+  // cent of the instructions near the axis with vibration and deflection). Else the knot nearest
+  // the middle, else the middle.
   double split_time(double lo, double hi) const;
   // The one crossing in [lo, hi], where g is monotone and changes sign (regula falsi, Illinois).
   double solve_bracket(int tooth, double lo, double hi, double g_lo, double g_hi) const;
@@ -440,6 +439,12 @@ class PassageGeometry {
   // A true lower bound of every crossing's height at time t with a single minimum: the envelope
   // itself when ideal, its floor when it wiggles.
   double bound(double t) const { return s_.wiggles ? floor_envelope(t) : envelope(t); }
+  // The stop-by-bound rule every walk ends by: past the bound's bottom t_b the bound only rises,
+  // so where it is at or above `best` at t, at least kBottomTolerance of a tooth period from t_b
+  // in direction dir (t_b is that close to the bottom), no crossing from t on can lower the node.
+  bool ends_by_bound(double t_b, double dir, double t, double best) const {
+    return dir * (t - t_b) >= kBottomTolerance * s_.period && bound(t) >= best;
+  }
 
   // A node on the pass's line, which the axis passes within kOnAxis of at t0 (the level time), is
   // cut by the tip then; +inf otherwise.
@@ -476,7 +481,7 @@ class PassageGeometry {
   // farther from the window's line than S v / omega. next_gap settles most nodes by it too.
   bool far_from_line() const {
     return !tilted_ && !turning_ &&
-           line_gap_ >= 1.01 * s_.gap_lag * s_.window[win_].plan_line.speed / std::abs(s_.omega);
+           line_gap_ >= kRoom * s_.gap_lag * s_.window[win_].plan_line.speed / std::abs(s_.omega);
   }
   // Where on the chord from a to b (0 to 1, in plan) the node's foot lies.
   double nearest_on_chord(const Vec3& a, const Vec3& b) const {

@@ -108,7 +108,7 @@ PassageGeometry::Span PassageGeometry::bound_rates(double rho_lo, double rho_hi,
   // sin(theta) (sin(theta) - Psi_u cos(theta)), whose last part lies within (1 -+ S) / 2. On the
   // side where the azimuth turns with the spindle the lag then slows the phase by at most
   // v^2 (S - 1) / (2 q x v): for a straight pass at distance d, 0.077 v / d at a 30 deg helix
-  // (was S v / d = 1.15 v / d), and 0 for an edge with no lag at the tip.
+  // (against S v / d = 1.15 v / d from the bound above), and 0 for an edge with no lag at the tip.
   if (c_lo > 0 || c_hi < 0) {
     const double scale = v * v / (c_lo > 0 ? c_lo : -c_hi);
     const double lo = 0.5 * (c_lo > 0 ? 1 - S : -1 - S) * scale;  // G' - omega >= lo
@@ -236,7 +236,7 @@ bool PassageGeometry::turns_by(double lo, double hi, double turn) const {
 
 double PassageGeometry::clearance(double out, double speed) const {
   const double k1 = s_.lag_shape.slope_to(out);
-  return 1.01 * std::sqrt(1 + k1 * k1) * speed / std::abs(s_.omega);
+  return kRoom * std::sqrt(1 + k1 * k1) * speed / std::abs(s_.omega);
 }
 
 bool PassageGeometry::clears_line(double out) const {
@@ -278,12 +278,12 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
     const Vec3 c = table_(t);
     const double v = s_.window[win_].plan_line.speed,
                  plan_hi = norm(x_ - c.x(), y_ - c.y()) + v * half;
-    if (plan_hi < 0.95 * s_.R) {
+    if (plan_hi < kRimFraction * s_.R) {
       const double L = s_.R / std::sqrt(s_.R2 - plan_hi * plan_hi);
       const double speed = L * v + turn_speed(), moved = speed * half;
-      if (rho + moved <= 0.95 * s_.R) {
-        if (rho - 1.01 * moved >= 1.01 * s_.gap_lag * speed / w) return half;
-        if (rho - 1.01 * moved >= clearance(rho + moved, speed)) return half;
+      if (rho + moved <= kRimFraction * s_.R) {
+        if (rho - kRoom * moved >= kRoom * s_.gap_lag * speed / w) return half;
+        if (rho - kRoom * moved >= clearance(rho + moved, speed)) return half;
       }
     }
   } else if (const auto [lo, hi] = s_.window[win_].gap_rho; rho <= hi) {
@@ -295,7 +295,7 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
     // The node far enough from the line with the lag's slope over the whole ball (gap_lag, at
     // least the one below): most nodes, settled without the table.
     if (far_from_line()) return half;
-    if (std::max(rho - 1.01 * v * half, line_gap_) >= clearance(rho + v * half, v)) return half;
+    if (std::max(rho - kRoom * v * half, line_gap_) >= clearance(rho + v * half, v)) return half;
   }
   // On a pass that keeps to its line, by the side the node lies on (no table: near the axis most
   // walks end here); the gap may then exceed half a revolution.

@@ -59,7 +59,7 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   // A piece whose ball stays within round-off of `below` (which falls as crossings are found)
   // holds nothing lower that counts. Next to the tip (a point of every edge, and the ball's
   // lowest near the axis) the pieces' floor equals the tip's height but for round-off: without
-  // the tie they were halved down to kOnAxis before anything ruled them out.
+  // the tie they would be halved down to kOnAxis before anything ruled them out.
   auto above = [&](double floor) {
     return floor >= below - 16 * std::numeric_limits<double>::epsilon() * (std::abs(below) + s_.R);
   };
@@ -106,9 +106,9 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
     if (q.over) below = std::min(below, q.height);
   };
   // The pieces still to settle, in storage kept by the caller's thread from call to call (an
-  // allocation each call was 4 % of the halving's instructions at lambda 0 with effects), taken
-  // into a local for the call: every use of a thread_local in a shared library is a call to find
-  // it (2 % of the instructions there).
+  // allocation each call would be a few per cent of the halving's instructions near the axis),
+  // taken into a local for the call: every use of a thread_local in a shared library is a call to
+  // find it (2 % of the instructions there).
   thread_local std::vector<Piece> kept;
   std::vector<Piece> stack;
   stack.swap(kept);

@@ -38,7 +38,7 @@
 // Measured on the paper's lambda 0 patch (0.3 mm at 1 um): 13.6 k zones, 11.7 k of them with two
 // turning points; a zone takes 5.7 evaluations of K for its turning points, a probe at each end
 // and turning point, and 3.2 evaluations and probes for each level solved (0.48 a zone), against
-// 7.9 pieces (a span and a probe each) by halving (docs/performance.md).
+// 7.9 pieces (a span and a probe each) by halving (CHANGELOG.md).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -48,7 +48,7 @@
 namespace topomill::plugins {
 
 double PassageGeometry::lined_convexity(double rho_hi, double* k2) const {
-  if (!lined() || !(rho_hi < 0.95 * s_.R)) return -INFINITY;
+  if (!lined() || !(rho_hi < kRimFraction * s_.R)) return -INFINITY;
   const PassageSetup::PlanLine& line = s_.window[win_].plan_line;
   const double w = std::abs(s_.omega), rho_lo = line_gap_;
   const LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);
@@ -168,7 +168,7 @@ bool PassageGeometry::crossings_lined(int only, double a, double b, double& belo
   // Where G (unwrapped from probe q0 at t0) equals `level` on a monotone piece [t0, t1], G(t1) =
   // g1: Newton's steps on G' = K / rho^2 (eval), kept within the bracket (else its middle), to
   // |G - level| < 1e-9 rad as crossing() converges; `out` gets tooth 0's probe there. (Regula
-  // falsi took nine probes a level, mostly next to a turning point, where G is a parabola.)
+  // falsi takes about nine probes a level next to a turning point, where G is a parabola.)
   auto solve = [&](int tooth, double level, double t0, const Probe& q0, double t1, const Probe& q1,
                    double g1, Probe& out) {
     double lo = t0, hi = t1, f_lo = q0.g - level;

@@ -19,8 +19,7 @@ double PassageGeometry::walk(double t_b, std::vector<Crossing>& roots, std::uint
       const double lo = t_b + (dir * m - 0.5) * rev, hi = lo + rev;
       if (hi < t_lo || lo > t_hi) break;
       const double edge = dir > 0 ? lo : hi;
-      if (m > 0 && dir * (edge - t_b) >= 0.05 * s_.period && bound(edge) >= std::min(best, below))
-        break;
+      if (m > 0 && ends_by_bound(t_b, dir, edge, std::min(best, below))) break;
       double limit = std::min(best, below);
       roots.clear();
       crossings_in(-1, std::max(lo, t_lo), std::min(hi, t_hi), limit, roots);  // every tooth

@@ -25,6 +25,9 @@ constexpr double kTwoPi = 2 * M_PI;
 constexpr double kRimFraction = 0.95;
 // A proven inequality is asked with this much room, so that round-off in a bound cannot decide it.
 constexpr double kRoom = 1.01;
+// A bound's bottom is found to this part of a tooth period: a walk's stop by the bound holds only
+// that far past it (PassageGeometry::ends_by_bound).
+constexpr double kBottomTolerance = 0.05;
 // Two roots of one tooth nearer than this part of a revolution are taken for the same passage:
 // where the phase is monotone a tooth's next passage is at least half a revolution on.
 constexpr double kSamePassage = 0.25;

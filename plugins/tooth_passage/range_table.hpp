@@ -6,9 +6,9 @@
 // ask for its extent and speed over every piece cut near the tool's axis: a scan over the samples
 // cost as much as the rest of the search there. The components that are asked together (the
 // correction's x, y and z and its speeds in plan and along z) share one table, so that a query
-// walks the tree once for all (a piece with correction knots inside asked for eight walks, now
-// one). Blocks of 4 make 40 bytes a correction sample for the table of a pass (budgeted in
-// resources.cpp); a tree over single samples took four times that, blocks of 16 were 40 % slower.
+// walks the tree once for all (a piece with correction knots inside would otherwise ask for eight
+// walks). Blocks of 4 make 40 bytes a correction sample for the table of a pass (budgeted in
+// resources.cpp); a tree over single samples takes four times that, blocks of 16 are slower.
 // The ragged ends are most of a query's cost: crossings_in cuts its pieces where they keep to
 // the blocks (PassageGeometry::split_time).
 #pragma once

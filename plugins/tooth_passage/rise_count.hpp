@@ -1,12 +1,14 @@
-// The rule that ends a walk along a pass in one direction when no height bound does.
+// The ideal follow's second rule for ending a tooth's walk in one direction, beside the bound.
 #pragma once
 
 #include <cmath>
 
 namespace topomill::plugins {
 
-// When a walk in one direction ends: after two passages in a row each higher than the one
-// before, or off the ball (past the node). Both walks stop by it, so they stop alike.
+// After two passages in a row each higher than the one before, or off the ball (past the node).
+// A rule, not a proof: the passages' heights follow the envelope, which has a single minimum; the
+// bound (PassageGeometry::ends_by_bound) usually ends the walk first, and the brute-force tests
+// (tests/integration/near_axis_test.cpp and the others against brute forces) hold both to it.
 class RiseCount {
  public:
   void add(double lowest) {

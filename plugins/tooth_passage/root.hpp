@@ -18,12 +18,12 @@ struct Root {
   // many nodes before this one it was followed (a difference of order k needs k; until then it
   // is 0). The next node's root is predicted by extrapolating a polynomial through them
   // (ahead()). Near the axis a crossing lies 0.05-0.2 mm from it, where the root's time bends
-  // so fast along the row that the quadratic's guess was 1e-7 to 1e-5 rad off the phase (a
+  // so fast along the row that a quadratic's guess is 1e-7 to 1e-5 rad off the phase (a
   // Newton step at nearly every crossing) and the quintic's mostly under 1e-9 (the tolerance:
   // one probe); order 6 gains nothing more. Where the grid is coarse for the
   // root's bend the differences grow with the order instead of shrinking, and a high order
-  // throws the guess far (at 20 um at lambda 0 onto other crossings, and the walk then solved
-  // revolution after revolution exactly: 80 times the instructions), so ahead() adds an
+  // throws the guess far (at 20 um at lambda 0 onto other crossings, and the walk would then solve
+  // revolution after revolution exactly), so ahead() adds an
   // order only while its difference is smaller than the one below.
   static constexpr int kOrder = 5;  // the extrapolation's highest order
   double bend = 0;
@@ -36,7 +36,7 @@ struct Root {
   // Ideal paths: the root at t followed from `last`, the same crossing at the node before (if
   // any), with the phase's rate `slope` there. A root met for the first time has no move
   // (drift 0), so the node after it takes its whole first move as the bend too: leaving the
-  // bend out there measured 0.6 % more instructions, not fewer.
+  // bend out there costs more steps than it saves.
   static Root followed(double t, const Root* last, double slope) {
     if (!last) return Root{t, 0.0, slope};
     Root r{t, t - last->t, slope};

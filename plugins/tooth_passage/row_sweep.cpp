@@ -47,8 +47,11 @@ double RowSweep::node_height(double x, double y, NodeCounts& counts) {
   auto visit = [&](std::size_t p) {
     const PassResult r = pass_height(p, x, y, best, counts);
     if (r.height < best) {
-      best = r.height, winner_ = r.lowest;
-      winner_.pass = r.lowest.tooth >= 0 ? p : Winner::kNone;
+      best = r.height;
+      winner_.pass = r.tooth >= 0 ? p : Winner::kNone;
+      winner_.tooth = r.tooth, winner_.t = r.t, winner_.fallback = r.fallback;
+      // A passage of the reference walk's: its root is kept here, as a walk's would be.
+      if (r.fallback) winner_.fallback_root = Root{r.t, 0.0, s_.omega}, winner_.fallback_root.x = x;
     }
     return r.can_lower;
   };
@@ -150,7 +153,7 @@ RowSweep::PassResult RowSweep::pass_height(std::size_t p, double x, double y, do
   bool solved = false;
   if (const double h = follow.revisit(best, solved); !std::isnan(h)) {
     out.can_lower = solved, out.height = std::min(h, tip_cut());
-    out.lowest.tooth = follow.lowest().tooth, out.lowest.t = follow.lowest().t;
+    out.tooth = follow.lowest().tooth, out.t = follow.lowest().t;
     return out;
   }
   t_b = bottom([&](double t) { return geo.floor_envelope(t); }, geo, st, x, t0);
@@ -166,7 +169,7 @@ RowSweep::PassResult RowSweep::pass_height(std::size_t p, double x, double y, do
     st.waited = irregular ? std::min(2 * st.waited + 1, kMaxWait) : 0, st.wait = st.waited;
   }
   // The lowest passage the revisit or the walk found, unless the reference finds one.
-  out.lowest.tooth = follow.lowest().tooth, out.lowest.t = follow.lowest().t;
+  out.tooth = follow.lowest().tooth, out.t = follow.lowest().t;
   if (s_.stopped()) return out;  // a walk cut short is not irregular: the map is discarded
   if (irregular) h = reference(geo, st, t_b, best, counts, out);
   out.height = std::min(h, tip_cut());
@@ -205,9 +208,7 @@ double RowSweep::reference(const PassageGeometry& geo, PassState& st, double t_b
   PassageGeometry::Crossing low{-1, 0.0, {}};
   const double h = geo.walk(t_b, roots_, counts.passages, best, &low);
   if (low.tooth >= 0) {
-    out.lowest.tooth = low.tooth, out.lowest.t = low.t, out.lowest.fallback = true;
-    out.lowest.fallback_root = Root{low.t, 0.0, s_.omega};
-    out.lowest.fallback_root.x = geo.x();
+    out.tooth = low.tooth, out.t = low.t, out.fallback = true;
   }
   return h;
 }

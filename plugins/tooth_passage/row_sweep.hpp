@@ -60,7 +60,11 @@ class RowSweep {
   struct PassResult {
     double height = INFINITY;  // its lowest passage below the best, else +inf
     bool can_lower = true;     // false: its envelope (or floor) proves it cannot lower the node
-    Winner lowest;             // corrected: which passage gave `height`, if known
+    // Corrected: which passage gave `height` (tooth -1: not known), and whether the reference
+    // walk found it.
+    int tooth = -1;
+    double t = 0;
+    bool fallback = false;
   };
   // How the node in hand was solved, for the work counts.
   struct Route {
