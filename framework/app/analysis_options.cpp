@@ -107,14 +107,14 @@ void AnalysisOptions::check_spacing_used(const std::vector<std::string>& files) 
                    "header");
 }
 
-Surface AnalysisOptions::process(Surface s) const {
+Surface AnalysisOptions::process(Surface surface) const {
   throw_if_interrupted();
-  s = remove_form(s, form);
+  surface = remove_form(surface, form);
   throw_if_interrupted();
-  if (lambda_s > 0) s = s_filter(s, lambda_s);
-  if (lambda_c > 0) s = l_filter(s, lambda_c);
+  if (lambda_s > 0) surface = s_filter(surface, lambda_s);
+  if (lambda_c > 0) surface = l_filter(surface, lambda_c);
   throw_if_interrupted();
-  return s;
+  return surface;
 }
 
 std::string AnalysisOptions::processing() const {

@@ -9,8 +9,8 @@ namespace topomill::plugins {
 
 // Measured like the loxodrome (zero lag at the shank, alpha = pi/2, growing towards the tip) the
 // lag is Psi = tan(gamma) cos(alpha): the axial height above the tip over R times tan(gamma), less
-// its shank value. docs/model.md writes tan(gamma)(1 - cos alpha), which is the same curve measured from
-// the tip and wound the other way; its own check value (32.6 deg at alpha = 10 deg, gamma = 30
+// its shank value. docs/model.md writes tan(gamma)(1 - cos alpha), which is the same curve measured
+// from the tip and wound the other way; its own check value (32.6 deg at alpha = 10 deg, gamma = 30
 // deg) is this form's. Finite at the tip: nothing singular to handle.
 class BallEndConstantLead : public BallEnd {
  public:

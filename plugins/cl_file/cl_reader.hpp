@@ -14,8 +14,8 @@ namespace topomill::plugins::cl {
 // A damaged or unsupported file: where (1-based line and column) and what was expected.
 class ReadError : public std::runtime_error {
  public:
-  ReadError(int line, int column, const std::string& message)
-      : std::runtime_error(message), line(line), column(column) {}
+  ReadError(int at_line, int at_column, const std::string& message)
+      : std::runtime_error(message), line(at_line), column(at_column) {}
   int line, column;
 };
 

@@ -1,5 +1,5 @@
-// Springback of the machined surface (docs/model.md Eq. 29-31): plastic strain decaying exponentially
-// below the surface, eps(z) = J1 exp(-J2 z), integrated over the plastic depth d.
+// Springback of the machined surface (docs/model.md Eq. 29-31): plastic strain decaying
+// exponentially below the surface, eps(z) = J1 exp(-J2 z), integrated over the plastic depth d.
 #include <cmath>
 #include <cstdio>
 

@@ -92,12 +92,12 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   // The ball's lowest possible height over the node on a piece.
   auto floor_of = [&](const Piece& p, const Span& sp) {
     if (sp.plan_lo >= s_.R) return double(INFINITY);
-    const double a = p.lo.at.t, b = p.hi.at.t;
+    const double ta = p.lo.at.t, tb = p.hi.at.t;
     // The nominal centre's lowest, and the correction's (its box's, where span read it).
     const double shift = !std::isnan(sp.box_z_lo) ? sp.box_z_lo
-                         : table_.corrected()     ? table_.correction_bounds(a, b).lo.z()
+                         : table_.corrected()     ? table_.correction_bounds(ta, tb).lo.z()
                                                   : 0.0;
-    const double z = table_.nominal_lowest_z(a, b, p.lo.n.z(), p.hi.n.z()) + shift;
+    const double z = table_.nominal_lowest_z(ta, tb, p.lo.n.z(), p.hi.n.z()) + shift;
     return z - std::sqrt(s_.R2 - sp.plan_lo * sp.plan_lo);
   };
   auto found = [&](int tooth, double t) {

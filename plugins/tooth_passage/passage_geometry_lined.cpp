@@ -171,9 +171,9 @@ bool PassageGeometry::crossings_lined(int only, double a, double b, double& belo
   // falsi takes about nine probes a level next to a turning point, where G is a parabola.)
   auto solve = [&](int tooth, double level, double t0, const Probe& q0, double t1, const Probe& q1,
                    double g1, Probe& out) {
-    double lo = t0, hi = t1, f_lo = q0.g - level;
+    double b_lo = t0, b_hi = t1, f_lo = q0.g - level;
     if (f_lo == 0 || g1 == level) return out = f_lo == 0 ? q0 : q1, f_lo == 0 ? t0 : t1;
-    double t = lo + (hi - lo) * f_lo / (f_lo - (g1 - level));
+    double t = b_lo + (b_hi - b_lo) * f_lo / (f_lo - (g1 - level));
     if (hints) {
       double near = INFINITY;
       for (const Hint& h : *hints)
@@ -185,13 +185,13 @@ bool PassageGeometry::crossings_lined(int only, double a, double b, double& belo
       if (!eval(t, e)) e.c = table_(t), e.f = NAN;  // (never within [a, b]: its ends were read)
       out = probe(0, t, e.c);
       const double f = q0.g + advance(t0, q0, t, out) - level;
-      if (std::abs(f) < 1e-9 || hi - lo <= 1e-13 * s_.rev) break;
+      if (std::abs(f) < 1e-9 || b_hi - b_lo <= 1e-13 * s_.rev) break;
       if ((f < 0) == (f_lo < 0))
-        lo = t, f_lo = f;
+        b_lo = t, f_lo = f;
       else
-        hi = t;
+        b_hi = t;
       const double next = t - f * e.r2 / (sense * e.f);
-      t = next > lo && next < hi ? next : 0.5 * (lo + hi);
+      t = next > b_lo && next < b_hi ? next : 0.5 * (b_lo + b_hi);
     }
     return t;
   };

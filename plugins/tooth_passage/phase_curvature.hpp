@@ -48,18 +48,18 @@ inline double peak_from(double g, double r, double c, double s) {
 // |G''| <= c there (see above).
 inline std::pair<double, double> phase_range(double ga, double gb, double ra, double rb, double c,
                                              double h) {
-  auto top = [h, c](double ga, double gb, double ra, double rb) {
-    double best = std::max(ga, gb);
-    // Where a peak can be: G' down to 0 from ra by s, and from 0 to rb after it.
-    const double lo = std::abs(ra) / c, hi = h - std::abs(rb) / c;
+  auto top = [h, c](double g0, double g1, double r0, double r1) {
+    double best = std::max(g0, g1);
+    // Where a peak can be: G' down to 0 from r0 by s, and from 0 to r1 after it.
+    const double lo = std::abs(r0) / c, hi = h - std::abs(r1) / c;
     if (lo <= hi) {
-      // peak_from(ga, ra, c, s) - peak_from(gb, -rb, c, h - s) = k0 + k1 s, k1 >= 0 (as
-      // |rb - ra| <= c h): rising less falling, so the lower of the two is largest where they
+      // peak_from(g0, r0, c, s) - peak_from(g1, -r1, c, h - s) = k0 + k1 s, k1 >= 0 (as
+      // |r1 - r0| <= c h): rising less falling, so the lower of the two is largest where they
       // meet, or at the end of [lo, hi] nearer to it.
-      const double k1 = 0.5 * (c * h + ra - rb);
-      const double k0 = ga - gb - 0.25 * c * h * h + 0.25 * (rb * rb - ra * ra) / c + 0.5 * rb * h;
+      const double k1 = 0.5 * (c * h + r0 - r1);
+      const double k0 = g0 - g1 - 0.25 * c * h * h + 0.25 * (r1 * r1 - r0 * r0) / c + 0.5 * r1 * h;
       const double s = std::clamp(k1 > 0 ? -k0 / k1 : 0.5 * (lo + hi), lo, hi);
-      best = std::max(best, std::min(peak_from(ga, ra, c, s), peak_from(gb, -rb, c, h - s)));
+      best = std::max(best, std::min(peak_from(g0, r0, c, s), peak_from(g1, -r1, c, h - s)));
     }
     return best;
   };

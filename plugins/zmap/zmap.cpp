@@ -132,8 +132,8 @@ class ZMap : public TopographyEvaluator {
             const double phi = theta + lag[e];
             double qx = ring[e] * std::cos(phi), qy = ring[e] * std::sin(phi), qz = depth[e];
             if (!vertical) {
-              const Vec3 w = frame * Vec3(qx, qy, qz);
-              qx = w.x(), qy = w.y(), qz = w.z();
+              const Vec3 turned = frame * Vec3(qx, qy, qz);
+              qx = turned.x(), qy = turned.y(), qz = turned.z();
             }
             qx += centre.x(), qy += centre.y(), qz += centre.z();
             ++points[w];

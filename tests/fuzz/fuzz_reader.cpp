@@ -22,8 +22,8 @@
 #define TOPOMILL_STR(x) TOPOMILL_STR2(x)
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const std::string path = "/tmp/topomill_fuzz_" + std::to_string(getpid()) + "." +
-                                  TOPOMILL_STR(TOPOMILL_FUZZ_FORMAT);
+  static const std::string path =
+      "/tmp/topomill_fuzz_" + std::to_string(getpid()) + "." + TOPOMILL_STR(TOPOMILL_FUZZ_FORMAT);
   {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));

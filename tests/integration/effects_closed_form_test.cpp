@@ -1,7 +1,7 @@
 // What vibration, deflection and springback do to the surface, under one fixed load (the
 // fixture_constant_force plugin): each moves the tool path by a constant that Eq. 22-33 give in
-// closed form, computed here from docs/model.md's formulas. The pipeline's surface must be the surface
-// of the ideal path moved by exactly that vector, with its sign, on an inclined plane.
+// closed form, computed here from docs/model.md's formulas. The pipeline's surface must be the
+// surface of the ideal path moved by exactly that vector, with its sign, on an inclined plane.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <sstream>

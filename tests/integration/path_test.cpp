@@ -123,8 +123,7 @@ TEST_CASE("zigzag reverses every second pass and leaves the others as raster lay
     }
 }
 
-TEST_CASE("raster and raster_across give the bits kept in tests/refdata/raster_bits",
-          "[path]") {
+TEST_CASE("raster and raster_across give the bits kept in tests/refdata/raster_bits", "[path]") {
   // tests/refdata/raster_bits/: height_raw.csv of each case, 20 um grid, 2 threads, as this tree
   // writes it: first by the last commit with the path laid out by the core (6424af8). They guard
   // a restructuring against changing any bit. A change that moves them on purpose writes them

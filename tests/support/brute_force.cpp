@@ -131,9 +131,9 @@ double brute_force_height(const topomill::ToolGeometry& tool, const topomill::To
                 !path.pass(p).waypoints.empty() || std::abs(x - path.pass(p).x) < 1e-9;
             if (on_line && rho1 < v * step) best = std::min(best, h1);
           } else {
-            const topomill::Vec3 a = posture_axis(path, p, t1), c = path.centre(p, t1);
+            const topomill::Vec3 a = posture_axis(path, p, t1), at = path.centre(p, t1);
             const bool along_y = path.pass(p).dy != 0;
-            const double across = along_y ? x - (c.x() - R * a.x()) : y - (c.y() - R * a.y());
+            const double across = along_y ? x - (at.x() - R * a.x()) : y - (at.y() - R * a.y());
             if (std::abs(across) < 1e-9 && rho1 < v * step / a.z()) best = std::min(best, h1);
           }
           t0 = t1, g0 = g1, rho0 = rho1;

@@ -212,15 +212,15 @@ Registration register_surfaces(const Surface& ref, const Surface& meas,
     return t;
   };
   auto residuals = [&](const Transform& t, double offset, const std::vector<std::size_t>& set) {
-    Residuals r;
+    Residuals sums;
     for (std::size_t q : set) {
       const Vec2 m = t(g.x(q % g.nx), g.y(q / g.nx));
       if (const auto z = sample.at(m.x(), m.y())) {
         const double d = *z - ref.map.z[q] - offset;
-        r.sum += d, r.squares += d * d, r.n += 1;
+        sums.sum += d, sums.squares += d * d, sums.n += 1;
       }
     }
-    return r;
+    return sums;
   };
   auto cost = [&](const Transform& t, double offset) {
     return residuals(t, offset, used).mean_square();
