@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "log.hpp"
-#include "pipeline.hpp"
 #include "plugin_catalog.hpp"
+#include "run/pipeline.hpp"
 #include "scene.hpp"
 
 namespace {

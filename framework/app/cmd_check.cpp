@@ -4,7 +4,7 @@
 #include "commands.hpp"
 #include "describe.hpp"
 #include "log.hpp"
-#include "pipeline.hpp"
+#include "run/pipeline.hpp"
 #include "scene_options.hpp"
 
 namespace topomill::cli {

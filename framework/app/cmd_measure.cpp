@@ -5,8 +5,8 @@
 #include "commands.hpp"
 #include "describe.hpp"
 #include "metrology/read_surface.hpp"
+#include "metrology/roughness_report.hpp"
 #include "metrology/write_surface.hpp"
-#include "roughness_report.hpp"
 
 namespace topomill::cli {
 

@@ -9,9 +9,9 @@
 #include "commands.hpp"
 #include "interrupt.hpp"
 #include "io/output_lock.hpp"
-#include "io/run_outputs.hpp"
 #include "log.hpp"
-#include "pipeline.hpp"
+#include "run/pipeline.hpp"
+#include "run/run_outputs.hpp"
 #include "scene_options.hpp"
 
 namespace topomill::cli {
@@ -67,7 +67,7 @@ int cmd_run(const Args& args) {
   throw_if_interrupted();
 
   lock.keep();
-  RunSummary summary = write_run_outputs(scene, result, out_dir, started);
+  RunSummary summary = write_run_outputs(result, out_dir, started);
   std::cout << summary.text;
   return 0;
 }

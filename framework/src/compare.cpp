@@ -5,8 +5,8 @@
 
 #include "interrupt.hpp"
 #include "metrology/resample.hpp"
+#include "metrology/roughness.hpp"
 #include "metrology/spectrum.hpp"
-#include "roughness.hpp"
 #include "topomill/error.hpp"
 
 namespace topomill {

@@ -15,10 +15,10 @@
 #include "io/png_chart.hpp"
 #include "io/png_heatmap.hpp"
 #include "metrology/autocorrelation.hpp"
+#include "metrology/roughness.hpp"
+#include "metrology/roughness_report.hpp"
 #include "metrology/spectrum.hpp"
 #include "metrology/write_surface.hpp"
-#include "roughness.hpp"
-#include "roughness_report.hpp"
 #include "topomill/error.hpp"
 
 namespace topomill {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "pipeline.hpp"
+#include "run/pipeline.hpp"
 
 namespace topomill {
 

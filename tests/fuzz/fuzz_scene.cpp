@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "pipeline.hpp"
 #include "plugin_catalog.hpp"
+#include "run/pipeline.hpp"
 #include "scene.hpp"
 #include "topomill/error.hpp"
 

@@ -4,8 +4,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "pipeline.hpp"
 #include "plugin_catalog.hpp"
+#include "run/pipeline.hpp"
 #include "scene.hpp"
 #include "support/run_command.hpp"
 

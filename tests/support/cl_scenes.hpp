@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline.hpp"
+#include "run/pipeline.hpp"
 #include "scene.hpp"
 #include "topomill/tool_path.hpp"
 

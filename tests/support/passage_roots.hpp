@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline.hpp"
+#include "run/pipeline.hpp"
 #include "scene.hpp"
 #include "support/scenes.hpp"
 #include "tooth_passage/passage_geometry.hpp"

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "metrology/surface.hpp"
-#include "pipeline.hpp"
+#include "run/pipeline.hpp"
 
 namespace testing {
 

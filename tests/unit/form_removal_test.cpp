@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "form_removal.hpp"
+#include "metrology/form_removal.hpp"
 #include "support/builtin_models.hpp"
 #include "topomill/surface_shape.hpp"
 

@@ -19,7 +19,7 @@
 #include "metrology/form_removal.hpp"
 #include "metrology/gaussian_filter.hpp"
 #include "metrology/read_surface.hpp"
-#include "roughness.hpp"
+#include "metrology/roughness.hpp"
 #include "support/run_command.hpp"
 #include "support/zip_files.hpp"
 #include "topomill/error.hpp"

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "io/sdf.hpp"
-#include "roughness.hpp"
+#include "metrology/roughness.hpp"
 
 using topomill::Grid;
 using topomill::HeightMap;

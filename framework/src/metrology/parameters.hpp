@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "metrology/roughness.hpp"
 #include "metrology/surface.hpp"
-#include "roughness.hpp"
 
 namespace topomill {
 

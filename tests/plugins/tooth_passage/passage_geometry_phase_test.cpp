@@ -13,7 +13,7 @@
 #include <string>
 
 #include "fixtures/flat_surface.hpp"
-#include "pipeline.hpp"
+#include "run/pipeline.hpp"
 #include "scene.hpp"
 #include "support/builtin_models.hpp"
 #include "support/passage_roots.hpp"

@@ -1,4 +1,4 @@
-#include "roughness_report.hpp"
+#include "metrology/roughness_report.hpp"
 
 #include <cmath>
 #include <sstream>

@@ -8,8 +8,10 @@
 
 #include "layout.hpp"
 #include "metrology/parameters.hpp"
+#include "metrology/roughness.hpp"
 #include "plugin_catalog.hpp"
-#include "roughness.hpp"
+#include "run/run_settings.hpp"
+#include "run/stage_clock.hpp"
 #include "scene.hpp"
 #include "topomill/deformation.hpp"
 #include "topomill/dynamics_model.hpp"
@@ -27,15 +29,11 @@ struct RunOptions {
   std::function<void(const std::string&, double)> progress;
 };
 
-struct StageTime {
-  std::string name;
-  double seconds = 0;
-};
-
 struct RunResult {
-  HeightMap raw;        // Z-map heights (mm) over the XY grid
-  HeightMap residual;   // after form removal (mm), on the unrolled (x, s) grid or the XY grid
-  Roughness roughness;  // of `residual`, in mm (convert at the output)
+  RunSettings settings;  // what the stages and the output writer read of the scene
+  HeightMap raw;         // Z-map heights (mm) over the XY grid
+  HeightMap residual;    // after form removal (mm), on the unrolled (x, s) grid or the XY grid
+  Roughness roughness;   // of `residual`, in mm (convert at the output)
   ParameterValues parameters;  // of `residual`: those [analysis] parameters selects, as reported
   std::vector<StageTime> stages;
   WorkCounts work;

@@ -1,4 +1,4 @@
-#include "io/run_outputs.hpp"
+#include "run/run_outputs.hpp"
 
 #include <cerrno>
 #include <cstdio>
@@ -22,7 +22,7 @@
 #include "io/vts.hpp"
 #include "io/x3p.hpp"
 #include "log.hpp"
-#include "roughness_report.hpp"
+#include "metrology/roughness_report.hpp"
 #include "topomill/version.hpp"
 
 namespace fs = std::filesystem;
@@ -33,43 +33,6 @@ namespace {
 
 // The staging directories' names: ".incomplete." and six random characters.
 constexpr const char* kStagingPrefix = ".incomplete.";
-
-// A scene value as a reader writes it: 0.3 (the shortest exact text, not 0.29999999999999999),
-// cw (no quotes), [0.86, 0.86].
-std::string value_text(const toml::node& v) {
-  if (const auto* d = v.as_floating_point()) return exact_text(d->get());
-  if (const auto* text = v.as_string()) return text->get();
-  if (const auto* a = v.as_array()) {
-    std::string out = "[";
-    for (const auto& e : *a) out += (out.size() > 1 ? ", " : "") + value_text(e);
-    return out + "]";
-  }
-  std::ostringstream os;
-  v.visit([&](auto&& n) { os << n; });
-  return os.str();
-}
-
-// The scene in one line for the files' comments: its name, then each table's model and its
-// keys as resolved ("tool ball_end_loxodrome (radius 5, teeth 2, ...); cutting (...); ...").
-std::string describe_scene(const Scene& scene) {
-  const toml::table resolved = scene.to_toml();
-  std::ostringstream os;
-  os << scene.table("scene").string("name");
-  for (const char* name : {"tool", "workpiece", "cutting", "path", "region", "evaluator", "force",
-                           "vibration", "deflection", "springback"}) {
-    const toml::table* t = resolved[name].as_table();
-    if (!t) continue;
-    os << "; " << name;
-    if (const auto* plugin = t->get_as<std::string>("plugin")) os << " " << plugin->get();
-    std::string keys;
-    for (const auto& [k, v] : *t) {
-      if (k.str() == "plugin" || v.is_table() || v.is_array_of_tables()) continue;
-      keys += (keys.empty() ? "" : ", ") + std::string(k.str()) + " " + value_text(v);
-    }
-    if (!keys.empty()) os << " (" << keys << ")";
-  }
-  return os.str();
-}
 
 // A dead run's staging directories and files (this run holds the lock: no live run has one). A
 // link named so is removed, not followed.
@@ -94,22 +57,9 @@ fs::path make_staging_dir(const std::string& out_dir) {
   return name;
 }
 
-}  // namespace
-
-RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
-                             const std::string& out_dir,
-                             std::chrono::steady_clock::time_point started) {
-  // The caller holds the directory's OutputLock: this run is its only writer.
-  std::error_code ec;
-  // Files are written into a hidden staging directory and moved in only when all are whole, so
-  // a killed run leaves its pieces there (removed by the next run), never beside summary.json.
-  // The directory is made anew under a name of its own (mkdtemp), so nothing planted in the
-  // output directory can stand in for it.
-  remove_stale_staging(out_dir);
-  const fs::path staging = make_staging_dir(out_dir);
-
-  const auto t0 = std::chrono::steady_clock::now();
-  const bool unrolled = scene.table("analysis").string("form") == "nominal";  // else on XY
+// The height maps (and the tool path) in the scene's formats, into `staging`; their names.
+std::vector<std::string> write_map_files(const RunSettings& settings, const RunResult& result,
+                                         const fs::path& staging) {
   std::vector<std::string> files;
   auto path = [&](const std::string& name) {
     files.push_back(name);
@@ -117,13 +67,13 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
   };
   // Every file names its map, the program, the time and the scene.
   const std::time_t now = std::time(nullptr);
-  const std::string described = describe_scene(scene);
+  const std::string& described = settings.described;
   const FileInfo raw_info{"topomill raw height (in plan, the evaluation grid)", described, now};
   const FileInfo residual_info{std::string("topomill residual height (") +
-                                   (unrolled ? "along the surface" : "in plan") + ", form " +
-                                   scene.table("analysis").string("form") + " removed)",
+                                   (settings.unrolled() ? "along the surface" : "in plan") +
+                                   ", form " + settings.form + " removed)",
                                described, now};
-  for (const auto& format : scene.table("output").strings("formats")) {
+  for (const auto& format : settings.formats) {
     throw_if_interrupted();  // between files: a stop request is honoured while writing too
     if (format == "csv") {
       write_csv(path("height_raw.csv"), result.raw, raw_info);
@@ -145,17 +95,25 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
       write_vts(path("height_residual.vts"), result.residual);
     } else if (format == "png") {
       HeatmapLabels labels;
-      if (!unrolled) labels.y = "y (mm)";
+      if (!settings.unrolled()) labels.y = "y (mm)";
       char sa[64];
       std::snprintf(sa, sizeof sa, "   Sa %.4g µm", result.roughness.Sa * 1e3);
-      labels.title = scene.table("scene").string("name") + sa;
-      labels.z = "h (µm), form " + scene.table("analysis").string("form") + " removed";
+      labels.title = settings.name + sa;
+      labels.z = "h (µm), form " + settings.form + " removed";
       write_png_heatmap(path("height_residual.png"), result.residual, labels);
       write_png_surface3d(path("height_residual_3d.png"), result.residual, labels.title, labels.x,
                           labels.y);
     }
   }
-  // What would make a move fail is refused before anything visible changes.
+  return files;
+}
+
+// The staged files moved into `out_dir`, after the old summary is removed (it would vouch for
+// files about to be replaced); what would make a move fail is refused before anything visible
+// changes.
+void move_into_place(const std::string& out_dir, const fs::path& staging,
+                     const std::vector<std::string>& files) {
+  std::error_code ec;
   std::vector<std::string> targets = files;
   targets.push_back("summary.json");
   for (const auto& f : targets)
@@ -166,13 +124,15 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
                            "choose another output directory)");
   // The last moment a stop request can be honoured: after it, the old result is replaced.
   throw_if_interrupted();
-  // A previous summary would vouch for files about to be replaced: remove it before the moves.
   fs::remove(fs::path(out_dir) / "summary.json", ec);
   for (const auto& f : files) fs::rename(staging / f, fs::path(out_dir) / f);
   fs::remove(staging, ec);
-  const double write_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
+// summary.json's content.
+std::string summary_json(const RunResult& result, const std::vector<std::string>& files,
+                         double write_s, std::chrono::steady_clock::time_point started) {
+  const RunSettings& settings = result.settings;
   toml::table timing;
   toml::array stage_names;
   for (const auto& s : result.stages) {
@@ -183,15 +143,13 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
   stage_names.push_back("output");
   timing.insert("total",
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
-
   toml::table plugins;
   std::vector<std::string> libraries;
-  for (const auto& [table, st] : scene.slots) {
-    if (!st.model) continue;
-    plugins.insert(table, toml::table{{"model", st.plugin},
-                                      {"library", st.model->library->path},
-                                      {"library_version", st.model->library->version}});
-    libraries.push_back(st.model->library->path);
+  for (const auto& p : settings.plugins) {
+    plugins.insert(
+        p.table,
+        toml::table{{"model", p.model}, {"library", p.library}, {"library_version", p.version}});
+    libraries.push_back(p.library);
   }
   toml::table work;
   for (const auto& [k, v] : result.work) work.insert(k, static_cast<std::int64_t>(v));
@@ -203,20 +161,19 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
   toml::array inputs;
   for (const auto& [file, crc] : result.input_files)
     inputs.push_back(toml::table{{"file", file}, {"crc32", crc}});
-
   toml::table root{
       {"topomill", toml::table{{"version", kVersion},
                                {"abi", static_cast<std::int64_t>(kAbiVersion)},
                                {"code_fingerprint", code_fingerprint(libraries)}}},
-      {"scene", toml::table{{"file", scene.file}, {"name", scene.table("scene").string("name")}}},
-      {"resolved_scene", scene.to_toml()},
+      {"scene", toml::table{{"file", settings.file}, {"name", settings.name}}},
+      {"resolved_scene", settings.resolved},
       {"plugins", std::move(plugins)},
       {"effects", std::move(effects)},
       {"stages", std::move(stage_names)},
       {"grid", toml::table{{"spacing_mm", result.layout.spacing},
                            {"zmap", grid_table(result.raw.grid)},
                            {"residual", grid_table(result.residual.grid)},
-                           {"form", scene.table("analysis").string("form")},
+                           {"form", settings.form},
                            {"passes", static_cast<std::int64_t>(result.layout.path->passes())}}},
       {"roughness", roughness_table(result.parameters)},
       {"inputs", std::move(inputs)},
@@ -227,26 +184,50 @@ RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
       {"work", std::move(work)},
       {"files", std::move(file_list)},
   };
-  RunSummary summary;
-  summary.json = to_json(root);
-  write_atomically((fs::path(out_dir) / "summary.json").string(),
-                   [&](std::ostream& out) { out << summary.json; });
+  return to_json(root);
+}
 
+// The human-readable result printed on stdout.
+std::string summary_text(const RunResult& result, const std::string& out_dir,
+                         const std::vector<std::string>& files) {
   std::ostringstream os;
   os.precision(4);
-  os << "scene    " << scene.file << "\n";
+  os << "scene    " << result.settings.file << "\n";
   const Grid &raw = result.raw.grid, &res = result.residual.grid;
   os << "grids    height_raw " << raw.nx << " x " << raw.ny << " nodes in plan, dx " << raw.dx * 1e3
      << " um, dy " << raw.dy * 1e3 << " um; height_residual " << res.nx << " x " << res.ny
-     << " nodes " << (unrolled ? "along the surface" : "in plan") << ", " << res.dx * 1e3 << " x "
-     << res.dy * 1e3 << " um\n";
+     << " nodes " << (result.settings.unrolled() ? "along the surface" : "in plan") << ", "
+     << res.dx * 1e3 << " x " << res.dy * 1e3 << " um\n";
   os << roughness_text(result.parameters, "   ", 4) << "\n";
   os << "time     ";
   for (const auto& s : result.stages) os << s.name << " " << s.seconds << " s  ";
   os << "\noutputs  " << out_dir << "/summary.json";
   for (const auto& f : files) os << " " << f;
   os << "\n";
-  summary.text = os.str();
+  return os.str();
+}
+
+}  // namespace
+
+RunSummary write_run_outputs(const RunResult& result, const std::string& out_dir,
+                             std::chrono::steady_clock::time_point started) {
+  // The caller holds the directory's OutputLock: this run is its only writer. Files are written
+  // into a hidden staging directory and moved in only when all are whole, so a killed run leaves
+  // its pieces there (removed by the next run), never beside summary.json. The directory is made
+  // anew under a name of its own (mkdtemp), so nothing planted in the output directory can stand
+  // in for it.
+  remove_stale_staging(out_dir);
+  const fs::path staging = make_staging_dir(out_dir);
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<std::string> files = write_map_files(result.settings, result, staging);
+  move_into_place(out_dir, staging, files);
+  const double write_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  RunSummary summary;
+  summary.json = summary_json(result, files, write_s, started);
+  write_atomically((fs::path(out_dir) / "summary.json").string(),
+                   [&](std::ostream& out) { out << summary.json; });
+  summary.text = summary_text(result, out_dir, files);
   log_debug("wrote " + std::to_string(files.size() + 1) + " files to " + out_dir);
   return summary;
 }

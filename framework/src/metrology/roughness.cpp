@@ -1,4 +1,4 @@
-#include "roughness.hpp"
+#include "metrology/roughness.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>

@@ -5,8 +5,7 @@
 #include <chrono>
 #include <string>
 
-#include "pipeline.hpp"
-#include "scene.hpp"
+#include "run/pipeline.hpp"
 
 namespace topomill {
 
@@ -15,8 +14,8 @@ struct RunSummary {
   std::string json;  // summary.json's content
 };
 
-RunSummary write_run_outputs(const Scene& scene, const RunResult& result,
-                             const std::string& out_dir,
+// The scene's settings come with the result (RunResult::settings), read once by the pipeline.
+RunSummary write_run_outputs(const RunResult& result, const std::string& out_dir,
                              std::chrono::steady_clock::time_point started);
 
 }  // namespace topomill
