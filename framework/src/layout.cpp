@@ -7,28 +7,16 @@
 
 #include "catw.hpp"
 #include "interrupt.hpp"
+#include "layout_checks.hpp"
 #include "resources.hpp"
 
 namespace topomill {
 
 namespace {
-constexpr double kDeg = M_PI / 180.0;
-constexpr double kMaxCells = 1e12;         // grid spacings along a side: far beyond any memory
-constexpr double kMaxPasses = 1e7;         // passes across the patch
-constexpr double kMinFeedPerTooth = 1e-6;  // mm, as cutting.feed_per_tooth's least
-// A laid-out pass in memory: the model's PassLine and the core's ToolPath::Pass, with the
-// vectors' growth (measured: 420 bytes a pass at 1e6 passes, `topomill check` under
-// /usr/bin/time -f %M).
-constexpr double kLayoutBytesPerPass = 512;
-constexpr double kPassesBeyond = 3;         // a step-over beyond each side, and one rounded up
+constexpr double kMaxCells = 1e12;          // grid spacings along a side: far beyond any memory
+constexpr double kMaxPasses = 1e7;          // passes across the patch
+constexpr double kMinFeedPerTooth = 1e-6;   // mm, as cutting.feed_per_tooth's least
 constexpr double kLargestCoordinate = 1e6;  // mm: a kilometre, as the workpiece's radius
-
-std::string format_count(double n) {
-  std::ostringstream os;
-  os.precision(3);
-  os << n;
-  return os.str();
-}
 
 double arc_of(const SurfaceShape& s, double y) {
   return s.arc_coordinate(y, s.height(y));
@@ -43,50 +31,6 @@ double y_at_arc(const SurfaceShape& surface, double s, double y_guess, double sp
     (arc_of(surface, mid) < s ? lo : hi) = mid;
   }
   return 0.5 * (lo + hi);
-}
-
-// A tilted tool: only the ball may cut (the contact range within the ball's lower half, about
-// the axis), and the steepest contact sets the evaluators' steps (lambda_max). The contact angle
-// is the angle between the axis and the normal: fixed, it varies with the surface along the pass;
-// normal, it is constant. Either way it is largest at a pass's ends or its middle on the
-// surfaces here (their inclination is monotone in y), and the CATW margin stands for the rest.
-static void check_posture(const ToolPath& path, Layout& L, const SlotTable& slot) {
-  L.lambda_max = 0;  // the contact's polar angle about the axis, no longer the inclination
-  for (std::size_t p = 0; p < path.passes(); ++p) {
-    if (!path.pass(p).waypoints.empty()) continue;  // check_waypoints
-    const double t_end = path.pass(p).t_end;
-    for (double t : {0.0, 0.5 * t_end, t_end}) {
-      const double angle = path.contact_angle(p, t);
-      L.lambda_max = std::max(L.lambda_max, angle);
-      if (angle + L.kappa < M_PI / 2) continue;
-      const char* key = slot.params.has("tilt") && slot.params.number("tilt") != 0 ? "tilt"
-                        : slot.params.has("lead")                                  ? "lead"
-                                                                                   : nullptr;
-      throw InputError(
-          key ? slot.params.where(key) : slot.where,
-          key ? "path." + std::string(key) : std::string("path"),
-          "the tool's axis is " + format_number(angle / kDeg) +
-              " deg from the surface normal at y = " + format_number(path.surface_y(p, t)) +
-              " mm, and with the cut's half-width of " + format_number(L.kappa / kDeg) +
-              " deg the ball's equator would cut (the shank above it would "
-              "rub): expected a smaller lead or tilt");
-    }
-  }
-}
-
-// What laying `steps` passes out holds, estimated before any pass is laid out, against the
-// memory there is: a step-over of 21 nm on a 0.1 mm patch is 4.8e6 passes, 2.1 GB and tens of
-// seconds to lay out, too late for the memory check after the layout.
-static void check_layout_memory(double steps, double ae, const Params& cut) {
-  const double layout_bytes = (steps + kPassesBeyond) * kLayoutBytesPerPass;
-  const double available = static_cast<double>(available_memory());
-  if (layout_bytes > 0.9 * available)
-    throw InputError(cut.where("stepover"), "cutting.stepover",
-                     "the patch would need about " + format_count(steps) +
-                         " passes at a step-over of " + format_number(ae) +
-                         " mm, whose layout alone needs about " + format_bytes(layout_bytes) +
-                         ", and " + format_bytes(available) +
-                         " are available: raise cutting.stepover or shrink region.size");
 }
 
 // The feed rates cutter-location data may give, from the scene's feed per tooth fz at feed
@@ -138,97 +82,77 @@ static ToolPath::Pass waypoint_pass(const PassLine& l, const FeedLimits& feed,
   return p;
 }
 
-// The patch in plan, grown by the ball's radius: the points of cutter-location data that can
-// cut it.
-struct Reach {
-  double x_lo, x_hi, y_lo, y_hi;
-  bool holds(const Vec3& c) const {
-    return c.x() > x_lo && c.x() < x_hi && c.y() > y_lo && c.y() < y_hi;
+namespace {
+
+// make_layout's steps over one scene, in order, sharing what each reads and finds: the checks of
+// the cut, the patch's place on the surface and its projection in plan, the grid, the passes the
+// path model lays out, and the tool path.
+struct LayoutSteps {
+  LayoutSteps(const Scene& scene_, const ToolGeometry& tool_,
+              std::shared_ptr<const SurfaceShape> surface_, const PathModel& path_model_)
+      : scene(scene_),
+        tool(tool_),
+        surface(std::move(surface_)),
+        path_model(path_model_),
+        cut(scene.table("cutting")),
+        region(scene.table("region")),
+        work(scene.slot("workpiece")),
+        path_slot(scene.slot("path")),
+        R(tool.radius()),
+        ap(cut.number("depth_of_cut")),
+        ae(cut.number("stepover")),
+        fz(cut.number("feed_per_tooth")),
+        rpm(cut.number("spindle_speed")),
+        h(region.number("spacing")),
+        r(surface->curvature_radius()),
+        size(region.numbers("size")),
+        teeth(tool.teeth()) {}
+
+  void check_cut() const;
+  void place_patch();
+  void project_patch();
+  void make_grid();
+  void request_passes();
+  std::vector<ToolPath::Pass> to_passes();
+  void make_path(std::vector<ToolPath::Pass> passes);
+  // A model's defect, not the user's: said so, with the model's name.
+  InputError defect(const std::string& what) const {
+    return InputError(
+        path_slot.where, "path",
+        "the path model '" + path_slot.plugin + "' " + what + " (a defect of the model)");
   }
+
+  const Scene& scene;
+  const ToolGeometry& tool;
+  std::shared_ptr<const SurfaceShape> surface;
+  const PathModel& path_model;
+  const Params &cut, &region;
+  const SlotTable &work, &path_slot;
+  const double R, ap, ae, fz, rpm, h, r;
+  const std::vector<double>& size;
+  const int teeth;
+  Layout L;
+  // The patch's place: by region.centre or by region.lambda (the key, for the messages), its
+  // centre, inclination and arc position, and its rows' extent in plan.
+  bool by_centre = false;
+  SourceRef place_at;
+  std::string place_name;
+  double x_c = 0, y_c = 0, lambda_c = 0, s_c = 0, y_lo = 0, y_hi = 0;
+  // The passes: their run-in, feed speed and spindle rate, what the path model was asked and
+  // laid out, and how far along Y the laid-out lines reach.
+  double run = 0, vf = 0, omega = 0;
+  PathRequest rq;
+  std::vector<PassLine> lines;
+  double y_first = INFINITY, y_last = -INFINITY, reach = 0;
 };
 
-// Every point of cutter-location data: its contact within the ball's lower half (about the
-// given axis, or the vertical), named by file and line, for the scene's depth or the point's own
-// if deeper (a centre below the surface puts the ball's equator in the material); the steepest
-// contact (lambda_max); and some point near the patch within the ball's reach of the surface (a
-// path that never touches the part left a flat map: centres read as tips, passes above the
-// part).
-static void check_waypoints(const ToolPath& path, const std::vector<PassLine>& lines,
-                            const Reach& reach, double R, Layout& L) {
-  const SurfaceShape& surface = path.surface();
-  double lowest = INFINITY;  // the least distance of a centre near the patch from the surface
-  SourceRef lowest_at;
-  for (std::size_t p = 0; p < path.passes(); ++p) {
-    const ToolPath::Pass& pass = path.pass(p);
-    if (pass.waypoints.empty()) continue;
-    const std::vector<ClPoint>& points = lines[p].points;
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      const double t = path.waypoint_time(p, k);
-      const double y = path.surface_y(p, t), angle = path.contact_angle(p, t);
-      const SourceRef at{lines[p].source, points[k].line, 1};
-      const Vec3& centre = pass.waypoints[k].centre;
-      // (The foot point is searched on the surface: off it, the search ends at an end.)
-      const double edge = 1e-9 * (1 + std::abs(y));
-      if (!(y > surface.y_min() + edge && y < surface.y_max() - edge) || !std::isfinite(angle))
-        throw InputError(at, "path.file",
-                         "the ball centre at y = " + format_number(centre.y()) +
-                             " mm has no point of the workpiece surface beneath it (y from " +
-                             format_number(surface.y_min()) + " to " +
-                             format_number(surface.y_max()) + " mm): expected points over it");
-      const double above = surface.normal_residual(centre.y(), centre.z(), 0.0);
-      if (reach.holds(centre) && above < lowest) lowest = above, lowest_at = at;
-      if (above <= 0)
-        throw InputError(at, "path.file",
-                         "the ball centre is " + format_number(-above) +
-                             " mm below the workpiece surface (along its normal): the ball's "
-                             "equator and the shank above it would cut; expected centres above "
-                             "the surface, less than the ball radius " +
-                             format_number(R) + " mm (tool tips read as centres? see path.point)");
-      // The half-angle of the ball's cap in the material at this point's own depth.
-      const double own = above < R ? std::acos(above / R) : 0.0;
-      const double kappa = std::max(L.kappa, own);
-      L.lambda_max = std::max(L.lambda_max, angle);
-      if (angle + kappa < M_PI / 2) continue;
-      throw InputError(at, "path.file",
-                       "the tool's axis is " + format_number(angle / kDeg) +
-                           " deg from the surface normal here, and with the cut's half-width of " +
-                           format_number(kappa / kDeg) +
-                           " deg the ball's equator would cut (the shank above it would rub): "
-                           "expected an axis nearer the normal");
-    }
-  }
-  if (std::isfinite(lowest) && lowest >= R)
-    throw InputError(lowest_at, "path.file",
-                     "the tool never touches the workpiece near the patch: the lowest ball "
-                     "centre there (this line) is " +
-                         format_number(lowest) + " mm from the surface along its normal, " +
-                         format_number(lowest - R) + " mm more than the ball radius " +
-                         format_number(R) +
-                         " mm, so the map would be the uncut surface; expected centres less than "
-                         "a ball radius from the surface (passes above the part? centres read as "
-                         "tips: see path.point)");
-}
-
-Layout make_layout(const Scene& scene, const ToolGeometry& tool,
-                   std::shared_ptr<const SurfaceShape> surface, const PathModel& path_model) {
-  const Params& cut = scene.table("cutting");
-  const Params& region = scene.table("region");
-  const double R = tool.radius();
-  const double ap = cut.number("depth_of_cut");
-  const double ae = cut.number("stepover");
-  const double fz = cut.number("feed_per_tooth");
-  const double rpm = cut.number("spindle_speed");
-  const double h = region.number("spacing");
-  const auto size = region.numbers("size");
-
+void LayoutSteps::check_cut() const {
+  // The workpiece's radius is a key of its own plugin's table: point at it when it is there.
+  const SourceRef radius_at = work.params.has("radius") ? work.params.where("radius") : work.where;
   if (ap > R)
     throw InputError(cut.where("depth_of_cut"), "cutting.depth_of_cut",
                      "depth of cut " + format_number(ap) + " mm exceeds the ball radius " +
                          format_number(R) + " mm: only the ball may cut");
-  const double r = surface->curvature_radius();
-  // The workpiece's radius is a key of its own plugin's table: point at it when it is there.
-  const SlotTable& work = scene.slot("workpiece");
-  const SourceRef radius_at = work.params.has("radius") ? work.params.where("radius") : work.where;
   if (r < 0 && -r <= R)
     throw InputError(radius_at, "workpiece.radius",
                      "a concave radius of " + format_number(-r) +
@@ -242,13 +166,11 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   if (h > std::min(size[0], size[1]) / 2)
     throw InputError(region.where("spacing"), "region.spacing",
                      "spacing is larger than half the patch: expected at least 3 nodes per side");
+}
 
-  Layout L;
-  L.spacing = h;
-  L.kappa = catw_kappa(R, ap, r);
-
+void LayoutSteps::place_patch() {
   // The patch's centre: over the uncut surface point at region.lambda, or at region.centre.
-  const bool by_centre = region.has("centre");
+  by_centre = region.has("centre");
   if (by_centre == region.has("lambda"))
     throw InputError(region.table_where(), "region",
                      by_centre ? "both lambda and centre place the patch: expected one of them"
@@ -256,9 +178,8 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
                                  "patch's centre) or centre ([x, y] in mm) to place the patch");
   // The key that placed it, for the messages below.
   const char* place_key = by_centre ? "centre" : "lambda";
-  const SourceRef place_at = region.where(place_key);
-  const std::string place_name = std::string("region.") + place_key;
-  double x_c = 0, y_c = 0;
+  place_at = region.where(place_key);
+  place_name = std::string("region.") + place_key;
   if (by_centre) {
     x_c = region.numbers("centre")[0], y_c = region.numbers("centre")[1];
     if (!(y_c > surface->y_min() && y_c < surface->y_max()))
@@ -273,8 +194,8 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
       throw InputError(place_at, place_name, e.what());
     }
   }
-  const double lambda_c = surface->inclination(y_c);
-  const double s_c = arc_of(*surface, y_c);
+  lambda_c = surface->inclination(y_c);
+  s_c = arc_of(*surface, y_c);
   L.s_lo = s_c - size[1] / 2;
   L.s_hi = s_c + size[1] / 2;
   // Checked before anything is laid out along the patch (found by the scene fuzzer: a patch of
@@ -288,6 +209,9 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
                          " mm; the patch " + format_number(L.s_lo) + " to " +
                          format_number(L.s_hi) + " mm): expected a smaller region.size or " +
                          place_name);
+}
+
+void LayoutSteps::project_patch() {
   // The patch lies on the machined surface, ap below the uncut one along the normal: its ends
   // project to y = y_s - ap sin(lambda(y_s)), y_s the uncut surface point at the same arc position.
   const double span = size[1] + 1.0;
@@ -295,15 +219,17 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
     const double ys = y_at_arc(*surface, s, y_c, span);
     return ys - ap * std::sin(surface->inclination(ys));
   };
-  const double y_lo = cut_y(L.s_lo);
-  const double y_hi = cut_y(L.s_hi);
+  y_lo = cut_y(L.s_lo);
+  y_hi = cut_y(L.s_hi);
   if (!(y_hi > y_lo))  // a surface plugin whose y does not grow along its arc
     throw InputError(work.where, "workpiece",
                      "the patch's ends project to y = " + format_number(y_lo) + " and " +
                          format_number(y_hi) +
                          " mm: expected y to grow along the surface's arc (a defect of the "
                          "surface model)");
+}
 
+void LayoutSteps::make_grid() {
   // Z-map grid: spacing h in X; in Y h cos(lambda), so that the resolution on the surface is about
   // h wherever the patch sits up to lambda = 60 deg. Steeper, the Y spacing stays h/2 (a height
   // field over XY sees a near-vertical surface edge-on; finer Y spacing would make the paper's
@@ -330,7 +256,9 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
     g.dy = dy_target;
     g.y0 = 0.5 * (y_lo + y_hi) - dy_target;
   }
+}
 
+void LayoutSteps::request_passes() {
   // Only the ball's bottom, near the nominal contact point, leaves the final surface: a node is
   // finished by the nearest pass on either side and by the teeth passing it along the feed. So
   // the passes run from one step-over before the patch to one after, and each pass feeds from a
@@ -340,11 +268,10 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   // at its start angle where a pass begins, so the run-in places the teeth's marks, and a surface
   // must not move when only its grid is refined (tests/integration/closed_form_test.cpp; the run
   // once held 2 spacings, which moved the marks by twice the change of spacing).
-  const int teeth = tool.teeth();
-  const double run = 3 * fz * teeth + ap + 2 * (y_lo - g.y0);
-  const double vf = fz * teeth * rpm / 60.0;
-  const double omega =
-      2 * M_PI * rpm / 60.0 * (cut.string("spindle_direction") == "cw" ? -1.0 : 1.0);
+  const Grid& g = L.grid;
+  run = 3 * fz * teeth + ap + 2 * (y_lo - g.y0);
+  vf = fz * teeth * rpm / 60.0;
+  omega = 2 * M_PI * rpm / 60.0 * (cut.string("spindle_direction") == "cw" ? -1.0 : 1.0);
   // The passes could be a step-over apart across the patch's width or along its arc.
   const double steps = std::max(size[0], L.s_hi - L.s_lo) / ae;
   if (!(steps < kMaxPasses))
@@ -354,7 +281,6 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
                          " mm: expected fewer than 1e7 (shrink region.size or raise "
                          "cutting.stepover)");
   check_layout_memory(steps, ae, cut);
-  PathRequest rq;
   rq.surface = surface.get();
   rq.stepover = ae, rq.feed_speed = vf, rq.run = run;
   rq.radius = R, rq.offset = R - ap;
@@ -362,32 +288,27 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   rq.x_lo = g.x0, rq.x_hi = x_c == 0 ? -g.x0 : x_c + size[0] / 2, rq.y_lo = y_lo, rq.y_hi = y_hi;
   rq.s_lo = L.s_lo, rq.s_hi = L.s_hi, rq.s_c = s_c, rq.y_c = y_c;
   rq.stop = &stop_flag();
-  const SlotTable& path_slot = scene.slot("path");
-  std::vector<PassLine> lines;
   try {
     lines = path_model.passes(rq);
   } catch (const ParamError& e) {
     throw InputError(path_slot.params.where(e.key()), "path." + e.key(), e.what());
   }
   throw_if_interrupted();
-  // A model's defect, not the user's: said so, with the model's name.
-  auto defect = [&](const std::string& what) {
-    return InputError(
-        path_slot.where, "path",
-        "the path model '" + path_slot.plugin + "' " + what + " (a defect of the model)");
-  };
   if (lines.empty()) throw defect("laid out no pass");
+}
+
+std::vector<ToolPath::Pass> LayoutSteps::to_passes() {
   // Evaluators may look two revolutions beyond a pass's ends (tooth_passage tabulates the centre
   // there), and the path is only defined over the surface: that reach must lie on it too. (With
   // 49 teeth on the paper's arc it did not: the centre was NaN there and tooth_passage's table
   // halved its step until memory ran out.)
   const FeedLimits feed_limits{vf * kMinFeedPerTooth / fz, vf * 2 * R / fz};
   std::vector<ToolPath::Pass> passes;
-  double y_first = INFINITY, y_last = -INFINITY, reach = 0;
   bool near_patch = false;  // some waypoint segment's box comes within R of the patch
   for (const PassLine& l : lines) {
     if (!l.points.empty()) {
-      passes.push_back(waypoint_pass(l, feed_limits, defect));
+      passes.push_back(
+          waypoint_pass(l, feed_limits, [this](const std::string& what) { return defect(what); }));
       for (std::size_t k = 0; k + 1 < l.points.size(); ++k) {
         const Vec3 &a = l.points[k].at.centre, &b = l.points[k + 1].at.centre;
         near_patch =
@@ -433,6 +354,10 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
             (reach > 0 ? std::string(", and two an evaluator may look beyond them") : "") +
             "); choose a smaller " + (by_centre ? "|y|" : "lambda") +
             ", a larger radius, or fewer teeth or a smaller feed");
+  return passes;
+}
+
+void LayoutSteps::make_path(std::vector<ToolPath::Pass> passes) {
   for (double y : {y_first, y_lo, y_c, y_hi, y_last})
     if (std::isfinite(y)) L.lambda_max = std::max(L.lambda_max, std::abs(surface->inclination(y)));
 
@@ -454,7 +379,22 @@ Layout make_layout(const Scene& scene, const ToolGeometry& tool,
   }
   if (!L.path->vertical()) check_posture(*L.path, L, path_slot);
   check_waypoints(*L.path, lines, {rq.x_lo - R, rq.x_hi + R, y_lo - R, y_hi + R}, R, L);
-  return L;
+}
+
+}  // namespace
+
+Layout make_layout(const Scene& scene, const ToolGeometry& tool,
+                   std::shared_ptr<const SurfaceShape> surface, const PathModel& path_model) {
+  LayoutSteps steps(scene, tool, std::move(surface), path_model);
+  steps.check_cut();
+  steps.L.spacing = steps.h;
+  steps.L.kappa = catw_kappa(steps.R, steps.ap, steps.r);
+  steps.place_patch();
+  steps.project_patch();
+  steps.make_grid();
+  steps.request_passes();
+  steps.make_path(steps.to_passes());
+  return steps.L;
 }
 
 }  // namespace topomill
