@@ -465,6 +465,10 @@ class PassageGeometry {
  private:
   // |(x, y)| without hypot's care for overflow, which costs here and is not needed (mm and mm/s).
   static double norm(double x, double y) { return std::sqrt(x * x + y * y); }
+  // One call of crossings_in: its pieces and how each is settled (passage_geometry_crossings.cpp).
+  struct Halving;
+  // One call of crossings_lined: the zone's turning points and levels (passage_geometry_lined.cpp).
+  struct LinedZone;
   // Where tooth 0's phase G, unwrapped from its value at probe `a` (time ta), equals `level` in
   // [ta, b], G(b) = g_b; G monotone there and the node out of the axis's way (advance).
   double solve_level(double ta, const Probe& a, double b, double g_b, double level) const;

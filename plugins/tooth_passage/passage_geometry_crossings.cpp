@@ -44,8 +44,9 @@ double PassageGeometry::split_time(double lo, double hi) const {
 // Pieces are split at a correction knot inside first (G' jumps there: split_time), else at the
 // middle; below a 1e-10 revolution the sign change alone decides (a touch of the edge no grid can
 // resolve).
-void PassageGeometry::crossings_in(int only, double a, double b, double& below,
-                                   std::vector<Crossing>& roots, Probe* ends) const {
+// One call's halving: the teeth asked for, the best height so far and the crossings found, and
+// how each piece is settled.
+struct PassageGeometry::Halving {
   struct End {
     Sample at;
     Probe q;      // tooth 0's
@@ -55,15 +56,116 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   struct Piece {
     End lo, hi;
   };
-  const double w = std::abs(s_.omega), min_len = 1e-10 * s_.rev;
+  const PassageGeometry& geo;
+  const int first, last;
+  double& below;
+  std::vector<Crossing>& roots;
+  const double w, min_len, roundoff;
+
   // A piece whose ball stays within round-off of `below` (which falls as crossings are found)
   // holds nothing lower that counts. Next to the tip (a point of every edge, and the ball's
   // lowest near the axis) the pieces' floor equals the tip's height but for round-off: without
   // the tie they would be halved down to kOnAxis before anything ruled them out.
-  auto above = [&](double floor) {
-    return floor >= below - 16 * std::numeric_limits<double>::epsilon() * (std::abs(below) + s_.R);
-  };
-  const int first = only < 0 ? 0 : only, last = only < 0 ? s_.teeth - 1 : only;
+  bool above(double floor) const {
+    return floor >=
+           below - 16 * std::numeric_limits<double>::epsilon() * (std::abs(below) + geo.s_.R);
+  }
+  // Tooth j's phase is tooth 0's turned by its angle: one probe serves all.
+  double offset(int j) const { return geo.s_.tooth_angle[j] - geo.s_.tooth_angle[0]; }
+  // The first whole turn m at or above phase v for tooth j: its level is m 2 pi - offset(j).
+  double first_turn(double v, int j) const { return std::ceil((v + offset(j)) / kTwoPi); }
+  End end(double t) const {
+    Vec3 n;
+    const Sample at = geo.sample(t, n);
+    return End{at, geo.probe(0, t, at.c), NAN, n};
+  }
+  // The rate at an end on the side of a piece whose correction slope is dv (kept: an end is
+  // shared by two pieces, on the same slope except at a knot).
+  double rate_of(End& e, const Vec3& dv) const {
+    if (e.at.dv != dv) return geo.rate(e.at, dv);
+    if (std::isnan(e.rate)) e.rate = geo.rate(e.at, dv);
+    return e.rate;
+  }
+  // The ball's lowest possible height over the node on a piece.
+  double floor_of(const Piece& p, const Span& sp) const {
+    if (sp.plan_lo >= geo.s_.R) return INFINITY;
+    const double ta = p.lo.at.t, tb = p.hi.at.t;
+    // The nominal centre's lowest, and the correction's (its box's, where span read it).
+    const double shift = !std::isnan(sp.box_z_lo) ? sp.box_z_lo
+                         : geo.table_.corrected() ? geo.table_.correction_bounds(ta, tb).lo.z()
+                                                  : 0.0;
+    const double z = geo.table_.nominal_lowest_z(ta, tb, p.lo.n.z(), p.hi.n.z()) + shift;
+    return z - std::sqrt(geo.s_.R2 - sp.plan_lo * sp.plan_lo);
+  }
+  void found(int tooth, double t) {
+    const Probe q = geo.probe(tooth, t);
+    roots.push_back({tooth, t, q});
+    if (q.over) below = std::min(below, q.height);
+  }
+  // Whether piece p is settled (its crossings, if any, found); false when it must be halved.
+  bool settle(Piece& p);
+  // Whether a piece that turns back is proven to hold no tooth's level, by the range its ends'
+  // phases and rates allow under the curvature bound (phase_range).
+  bool no_level(const Piece& p, const Span& sp, double ra, double rb, double h) const;
+};
+
+inline bool PassageGeometry::Halving::no_level(const Piece& p, const Span& sp, double ra, double rb,
+                                               double h) const {
+  const double g_lo = p.lo.q.g, g_hi = g_lo + geo.advance(p.lo.at.t, p.lo.q, p.hi.at.t, p.hi.q);
+  const auto [v_lo, v_hi] = phase_range(g_lo, g_hi, ra, rb, sp.curve, h);
+  for (int j = first; j <= last; ++j)
+    if (first_turn(v_lo - 1e-9, j) * kTwoPi - offset(j) <= v_hi + 1e-9) return false;
+  return true;
+}
+
+inline bool PassageGeometry::Halving::settle(Piece& p) {
+  const double h = p.hi.at.t - p.lo.at.t;
+  const Span sp = geo.span(p.lo.at, p.hi.at, &p.lo.n, &p.hi.n);
+  if (sp.rho_hi <= kOnAxis) {
+    // The axis within kOnAxis of the node all along: the tip, a point of every edge, cuts it
+    // here (g jumps by pi rather than crossing zero, and no subdivision settles it).
+    found(first, 0.5 * (p.lo.at.t + p.hi.at.t));
+    return true;
+  }
+  const double reach = sp.turn(w, h) + roundoff;
+  bool reachable = false;
+  for (int j = first; j <= last && !reachable; ++j)
+    reachable =
+        std::abs(wrap(p.lo.q.g + offset(j))) + std::abs(wrap(p.hi.q.g + offset(j))) <= reach;
+  if (!reachable) return true;
+  if (sp.rho_lo > geo.rho_hi_ || sp.rho_hi < geo.rho_lo_ || above(floor_of(p, sp))) return true;
+  // Monotone: turn < |omega|, or G' of one sign at both ends with room for the curvature (G' is
+  // then at least half their sum less the curvature's fall between).
+  bool mono = sp.monotone(w) || sp.falls(w);
+  if (!mono && std::isfinite(sp.curve)) {
+    const double ra = rate_of(p.lo, p.lo.at.dv), rb = rate_of(p.hi, p.lo.at.dv);
+    mono = (ra > 0) == (rb > 0) && 0.5 * (std::abs(ra) + std::abs(rb) - sp.curve * h) > 0;
+    // A turn-back inside: where no tooth's level lies in the range G can reach, no crossing does.
+    if (!mono && no_level(p, sp, ra, rb, h)) return true;
+  }
+  if (mono) {
+    // Unwrapped from the piece's start (rho_lo > 0: the turn is exact), every tooth's levels
+    // G = 2 pi m - offset(j) between its ends.
+    const double g_lo = p.lo.q.g, g_hi = g_lo + geo.advance(p.lo.at.t, p.lo.q, p.hi.at.t, p.hi.q);
+    const double v_lo = std::min(g_lo, g_hi), v_hi = std::max(g_lo, g_hi);
+    for (int j = first; j <= last; ++j)
+      for (double m = first_turn(v_lo, j); m * kTwoPi - offset(j) <= v_hi; ++m)
+        found(j, geo.solve_level(p.lo.at.t, p.lo.q, p.hi.at.t, g_hi, m * kTwoPi - offset(j)));
+    return true;
+  }
+  if (h < min_len) {
+    for (int j = first; j <= last; ++j) {
+      const double ga = wrap(p.lo.q.g + offset(j)), gb = wrap(p.hi.q.g + offset(j));
+      if (crosses(ga, gb)) found(j, geo.solve_bracket(j, p.lo.at.t, p.hi.at.t, ga, gb));
+    }
+    return true;
+  }
+  return false;
+}
+
+void PassageGeometry::crossings_in(int only, double a, double b, double& below,
+                                   std::vector<Crossing>& roots, Probe* ends) const {
+  const double w = std::abs(s_.omega);
   // The probes' phases carry round-off of a few ulps of their largest terms (omega t, the pass's
   // phase, the wrap). Where the phase turns at exactly its bound's rate (a node on the pass's line
   // with no lag turning there: the azimuth stands still, so G' = omega and the bound is tight), a
@@ -73,108 +175,26 @@ void PassageGeometry::crossings_in(int only, double a, double b, double& below,
   // line a crossing 0.11 nm below the tip's cut is lost so.
   const double roundoff = 32 * std::numeric_limits<double>::epsilon() *
                           (w * std::max(std::abs(a), std::abs(b)) + std::abs(phase_) + 8 * M_PI);
-  // Tooth j's phase is tooth 0's turned by its angle: one probe serves all.
-  auto offset = [&](int j) { return s_.tooth_angle[j] - s_.tooth_angle[0]; };
-  // The first whole turn m at or above phase v for tooth j: its level is m 2 pi - offset(j).
-  auto first_turn = [&](double v, int j) { return std::ceil((v + offset(j)) / kTwoPi); };
-  auto end = [&](double t) {
-    Vec3 n;
-    const Sample at = sample(t, n);
-    return End{at, probe(0, t, at.c), NAN, n};
-  };
-  // The rate at an end on the side of a piece whose correction slope is dv (kept: an end is
-  // shared by two pieces, on the same slope except at a knot).
-  auto rate_of = [&](End& e, const Vec3& dv) {
-    if (e.at.dv != dv) return rate(e.at, dv);
-    if (std::isnan(e.rate)) e.rate = rate(e.at, dv);
-    return e.rate;
-  };
-  // The ball's lowest possible height over the node on a piece.
-  auto floor_of = [&](const Piece& p, const Span& sp) {
-    if (sp.plan_lo >= s_.R) return double(INFINITY);
-    const double ta = p.lo.at.t, tb = p.hi.at.t;
-    // The nominal centre's lowest, and the correction's (its box's, where span read it).
-    const double shift = !std::isnan(sp.box_z_lo) ? sp.box_z_lo
-                         : table_.corrected()     ? table_.correction_bounds(ta, tb).lo.z()
-                                                  : 0.0;
-    const double z = table_.nominal_lowest_z(ta, tb, p.lo.n.z(), p.hi.n.z()) + shift;
-    return z - std::sqrt(s_.R2 - sp.plan_lo * sp.plan_lo);
-  };
-  auto found = [&](int tooth, double t) {
-    const Probe q = probe(tooth, t);
-    roots.push_back({tooth, t, q});
-    if (q.over) below = std::min(below, q.height);
-  };
+  Halving run{
+      *this,   only < 0 ? 0 : only, only < 0 ? s_.teeth - 1 : only, below, roots, w, 1e-10 * s_.rev,
+      roundoff};
+  using Piece = Halving::Piece;
   // The pieces still to settle, in storage kept by the caller's thread from call to call (an
   // allocation each call would be a few per cent of the halving's instructions near the axis),
   // taken into a local for the call: every use of a thread_local in a shared library is a call to
-  // find it (2 % of the instructions there).
+  // find it.
   thread_local std::vector<Piece> kept;
   std::vector<Piece> stack;
   stack.swap(kept);
   stack.clear();
-  // Whether piece p is settled (its crossings, if any, found); false when it must be halved.
-  auto settle = [&](Piece& p) {
-    const double h = p.hi.at.t - p.lo.at.t;
-    const Span sp = span(p.lo.at, p.hi.at, &p.lo.n, &p.hi.n);
-    if (sp.rho_hi <= kOnAxis) {
-      // The axis within kOnAxis of the node all along: the tip, a point of every edge, cuts it
-      // here (g jumps by pi rather than crossing zero, and no subdivision settles it).
-      found(first, 0.5 * (p.lo.at.t + p.hi.at.t));
-      return true;
-    }
-    const double reach = sp.turn(w, h) + roundoff;
-    bool reachable = false;
-    for (int j = first; j <= last && !reachable; ++j)
-      reachable =
-          std::abs(wrap(p.lo.q.g + offset(j))) + std::abs(wrap(p.hi.q.g + offset(j))) <= reach;
-    if (!reachable) return true;
-    if (sp.rho_lo > rho_hi_ || sp.rho_hi < rho_lo_ || above(floor_of(p, sp))) return true;
-    // Monotone: turn < |omega|, or G' of one sign at both ends with room for the curvature (G'
-    // is then at least half their sum less the curvature's fall between).
-    bool mono = sp.monotone(w) || sp.falls(w);
-    if (!mono && std::isfinite(sp.curve)) {
-      const double ra = rate_of(p.lo, p.lo.at.dv), rb = rate_of(p.hi, p.lo.at.dv);
-      mono = (ra > 0) == (rb > 0) && 0.5 * (std::abs(ra) + std::abs(rb) - sp.curve * h) > 0;
-      if (!mono) {
-        // A turn-back inside: G stays within what its ends' phases and rates allow under the
-        // curvature bound (phase_range); where no tooth's level lies in that range, no crossing
-        // does.
-        const double g_lo = p.lo.q.g, g_hi = g_lo + advance(p.lo.at.t, p.lo.q, p.hi.at.t, p.hi.q);
-        const auto [v_lo, v_hi] = phase_range(g_lo, g_hi, ra, rb, sp.curve, h);
-        bool level = false;
-        for (int j = first; j <= last && !level; ++j)
-          level = first_turn(v_lo - 1e-9, j) * kTwoPi - offset(j) <= v_hi + 1e-9;
-        if (!level) return true;
-      }
-    }
-    if (mono) {
-      // Unwrapped from the piece's start (rho_lo > 0: the turn is exact), every tooth's levels
-      // G = 2 pi m - offset(j) between its ends.
-      const double g_lo = p.lo.q.g, g_hi = g_lo + advance(p.lo.at.t, p.lo.q, p.hi.at.t, p.hi.q);
-      const double v_lo = std::min(g_lo, g_hi), v_hi = std::max(g_lo, g_hi);
-      for (int j = first; j <= last; ++j)
-        for (double m = first_turn(v_lo, j); m * kTwoPi - offset(j) <= v_hi; ++m)
-          found(j, solve_level(p.lo.at.t, p.lo.q, p.hi.at.t, g_hi, m * kTwoPi - offset(j)));
-      return true;
-    }
-    if (h < min_len) {
-      for (int j = first; j <= last; ++j) {
-        const double ga = wrap(p.lo.q.g + offset(j)), gb = wrap(p.hi.q.g + offset(j));
-        if (crosses(ga, gb)) found(j, solve_bracket(j, p.lo.at.t, p.hi.at.t, ga, gb));
-      }
-      return true;
-    }
-    return false;
-  };
   // Depth first, the piece in hand kept out of the stack (a push and a pop of two ends saved
   // at each halving, and the rate at the end it keeps).
-  Piece p{end(a), end(b)};
+  Piece p{run.end(a), run.end(b)};
   if (ends) ends[0] = p.lo.q, ends[1] = p.hi.q;
   // A stop request is honoured here too: on a steep face one node's pieces can take a minute.
   while (!s_.stopped()) {
-    if (!settle(p)) {
-      const End mid = end(split_time(p.lo.at.t, p.hi.at.t));
+    if (!run.settle(p)) {
+      const Halving::End mid = run.end(split_time(p.lo.at.t, p.hi.at.t));
       // The half nearer the axis first: it holds the lowest crossings, which prune the other.
       if (p.lo.q.rho < p.hi.q.rho)
         stack.push_back(Piece{mid, p.hi}), p.hi = mid;

@@ -61,6 +61,95 @@ double PassageGeometry::lined_convexity(double rho_hi, double* k2) const {
          (1 + k.k1) * rho_hi * J;
 }
 
+// One call's direct zone: F = sign(omega) K at a time, the range [lo, hi] of its slope and the
+// envelope's slope (the ball's height over the node), the steps to F's zeros, and each level's
+// solve on a monotone piece.
+struct PassageGeometry::LinedZone {
+  struct Eval {
+    double t, f, lo, hi, rise, r2;
+    Vec3 c;  // the centre
+  };
+  const PassageGeometry& geo;
+  const double sense, k2;  // the spindle's sense; the lag's bend as the convexity bound took it
+  const std::vector<Hint>* hints;
+
+  bool eval(double t, Eval& e) const {
+    const PassageSetup& s = geo.s_;
+    Vec3 c, v, acc;
+    if (!geo.table_.nominal_jet(t, c, v, acc)) return false;
+    const double qx = geo.x_ - c.x(), qy = geo.y_ - c.y(), r2 = qx * qx + qy * qy;
+    const double sin_a = std::sqrt(r2) / s.R, cos_a = std::sqrt(1 - sin_a * sin_a);
+    const double psi = s.lag_shape.slope(sin_a, cos_a, *s.tool);
+    const double D = qx * v.x() + qy * v.y(), M = qx * v.y() - qy * v.x();
+    const double dD = qx * acc.x() + qy * acc.y() - (v.x() * v.x() + v.y() * v.y());
+    const double slope = sense * (-2 * s.omega * D - psi * dD + (qx * acc.y() - qy * acc.x()));
+    const double bend = k2 * D * D / r2;  // |Psi_uu D^2 / rho^2|
+    e = {t,
+         sense * (s.omega * r2 - psi * D + M),
+         slope - bend,
+         slope + bend,
+         v.z() - D / (s.R * cos_a),
+         r2,
+         c};
+    return true;
+  }
+  // A step ends about F / |F'| before its zero; over that the phase turns by at most about
+  // F^2 / (|F'| rho^2) past its turning point, and under 1e-13 rad (the phase's round-off) it is
+  // taken as the zero.
+  static bool settled(double f, double steep, double r2) {
+    return steep > 0 && f * f <= 1e-13 * steep * r2;
+  }
+  // Steps from e (an end, where F > 0) towards the other end `far` (dir 1 from the start, -1 from
+  // the end), each to the nearer zero of the parabola that bounds F from below: F(x) >= F(t) +
+  // F'(t) (x - t) + m (x - t)^2 / 2, with F'(t) taken at its steepest towards the zero. A parabola
+  // of no zero before the far end proves F positive on the rest: `none`. False where the steps do
+  // not settle (a near touch: crossings_in) or leave the table.
+  bool step_to_zero(Eval& e, double far, int dir, double m, bool& zero, bool& none) const {
+    for (int it = 0; e.f > 0 && !zero && !none; ++it) {
+      const double slope = dir > 0 ? e.lo : e.hi, s = dir * slope, disc = s * s - 2 * m * e.f;
+      const double step = s < 0 && disc >= 0 ? 2 * e.f / (std::sqrt(disc) - s) : INFINITY;
+      if (!(dir * (e.t + dir * step) < dir * far)) {
+        none = true;
+      } else {
+        if (it == 40) return false;
+        if (!eval(e.t + dir * step, e)) return false;
+        zero = e.f <= 0 || settled(e.f, dir > 0 ? -e.hi : e.lo, e.r2);
+      }
+    }
+    return true;
+  }
+  // Where G (unwrapped from probe q0 at t0) equals `level` on a monotone piece [t0, t1], G(t1) =
+  // g1: Newton's steps on G' = K / rho^2 (eval), kept within the bracket (else its middle), to
+  // |G - level| < 1e-9 rad as crossing() converges; `out` gets tooth 0's probe there. (Regula
+  // falsi takes about nine probes a level next to a turning point, where G is a parabola.)
+  double solve(int tooth, double level, double t0, const Probe& q0, double t1, const Probe& q1,
+               double g1, Probe& out) const {
+    double b_lo = t0, b_hi = t1, f_lo = q0.g - level;
+    if (f_lo == 0 || g1 == level) return out = f_lo == 0 ? q0 : q1, f_lo == 0 ? t0 : t1;
+    double t = b_lo + (b_hi - b_lo) * f_lo / (f_lo - (g1 - level));
+    if (hints) {
+      double near = INFINITY;
+      for (const Hint& h : *hints)
+        if (h.tooth == tooth && h.t > t0 && h.t < t1 && std::abs(h.t - t) < near)
+          near = std::abs(h.t - t), t = h.t;
+    }
+    for (int it = 0; it < 100; ++it) {
+      Eval e{};
+      if (!eval(t, e)) e.c = geo.table_(t), e.f = NAN;  // (never within [a, b]: ends were read)
+      out = geo.probe(0, t, e.c);
+      const double f = q0.g + geo.advance(t0, q0, t, out) - level;
+      if (std::abs(f) < 1e-9 || b_hi - b_lo <= 1e-13 * geo.s_.rev) break;
+      if ((f < 0) == (f_lo < 0))
+        b_lo = t, f_lo = f;
+      else
+        b_hi = t;
+      const double next = t - f * e.r2 / (sense * e.f);
+      t = next > b_lo && next < b_hi ? next : 0.5 * (b_lo + b_hi);
+    }
+    return t;
+  }
+};
+
 bool PassageGeometry::crossings_lined(int only, double a, double b, double& below,
                                       std::vector<Crossing>& roots, Probe* ends,
                                       const std::vector<Hint>* hints) const {
@@ -78,67 +167,16 @@ bool PassageGeometry::crossings_lined(int only, double a, double b, double& belo
   const double m = lined_convexity(rho_hi, &k2);
   if (!(m > 0)) return false;
 
-  // F = sign(omega) K at t, the range [lo, hi] of its slope, and the envelope's slope (ball
-  // height over the node).
-  struct Eval {
-    double t, f, lo, hi, rise, r2;
-    Vec3 c;  // the centre
-  };
-  auto eval = [&](double t, Eval& e) {
-    Vec3 c, v, acc;
-    if (!table_.nominal_jet(t, c, v, acc)) return false;
-    const double qx = x_ - c.x(), qy = y_ - c.y(), r2 = qx * qx + qy * qy;
-    const double sin_a = std::sqrt(r2) / s_.R, cos_a = std::sqrt(1 - sin_a * sin_a);
-    const double psi = s_.lag_shape.slope(sin_a, cos_a, *s_.tool);
-    const double D = qx * v.x() + qy * v.y(), M = qx * v.y() - qy * v.x();
-    const double dD = qx * acc.x() + qy * acc.y() - (v.x() * v.x() + v.y() * v.y());
-    const double slope = sense * (-2 * s_.omega * D - psi * dD + (qx * acc.y() - qy * acc.x()));
-    const double bend = k2 * D * D / r2;  // |Psi_uu D^2 / rho^2|
-    e = {t,
-         sense * (s_.omega * r2 - psi * D + M),
-         slope - bend,
-         slope + bend,
-         v.z() - D / (s_.R * cos_a),
-         r2,
-         c};
-    return true;
-  };
+  using Eval = LinedZone::Eval;
+  const LinedZone zone{*this, sense, k2, hints};
   Eval lo{}, hi{};
-  if (!eval(a, lo) || !eval(b, hi)) return false;
+  if (!zone.eval(a, lo) || !zone.eval(b, hi)) return false;
   const Eval at_a = lo, at_b = hi;
-  // Steps inwards from each end where F > 0 there (see above), each to the nearer zero of the
-  // parabola that bounds F from below: F(x) >= F(t) + F'(t) (x - t) + m (x - t)^2 / 2, with F'(t)
-  // taken at its steepest towards the zero. A parabola of no zero before the far end proves F
-  // positive on the rest of [a, b]: no zero at all.
-  // A step ends about F / |F'| before its zero; over that the phase turns by at most about
-  // F^2 / (|F'| rho^2) past its turning point, and under 1e-13 rad (the phase's round-off) it is
-  // taken as the zero.
-  auto settled = [](double f, double steep, double r2) {
-    return steep > 0 && f * f <= 1e-13 * steep * r2;
-  };
+  // Steps inwards from each end where F > 0 there (see above) to F's zeros, the phase's turning
+  // points (a near touch that does not settle: crossings_in).
   bool zero_lo = false, zero_hi = false, none = false;
-  for (int it = 0; lo.f > 0 && !zero_lo && !none; ++it) {
-    const double s = lo.lo, disc = s * s - 2 * m * lo.f;
-    const double step = s < 0 && disc >= 0 ? 2 * lo.f / (std::sqrt(disc) - s) : INFINITY;
-    if (!(lo.t + step < b)) {
-      none = true;
-    } else {
-      if (it == 40) return false;  // a near touch that does not settle: crossings_in
-      if (!eval(lo.t + step, lo)) return false;
-      zero_lo = lo.f <= 0 || settled(lo.f, -lo.hi, lo.r2);
-    }
-  }
-  for (int it = 0; hi.f > 0 && !zero_hi && !none; ++it) {
-    const double s = hi.hi, disc = s * s - 2 * m * hi.f;
-    const double step = s > 0 && disc >= 0 ? 2 * hi.f / (std::sqrt(disc) + s) : INFINITY;
-    if (!(hi.t - step > a)) {
-      none = true;
-    } else {
-      if (it == 40) return false;
-      if (!eval(hi.t - step, hi)) return false;
-      zero_hi = hi.f <= 0 || settled(hi.f, hi.lo, hi.r2);
-    }
-  }
+  if (!zone.step_to_zero(lo, b, 1, m, zero_lo, none)) return false;
+  if (!zone.step_to_zero(hi, a, -1, m, zero_hi, none)) return false;
   // The monotone pieces: [a, t1], [t1, t2], [t2, b], those that exist.
   std::array<Eval, 4> cut;
   std::array<Probe, 4> q;
@@ -165,36 +203,6 @@ bool PassageGeometry::crossings_lined(int only, double a, double b, double& belo
       return false;
   }
   if (ends) ends[0] = pa, ends[1] = pb;
-  // Where G (unwrapped from probe q0 at t0) equals `level` on a monotone piece [t0, t1], G(t1) =
-  // g1: Newton's steps on G' = K / rho^2 (eval), kept within the bracket (else its middle), to
-  // |G - level| < 1e-9 rad as crossing() converges; `out` gets tooth 0's probe there. (Regula
-  // falsi takes about nine probes a level next to a turning point, where G is a parabola.)
-  auto solve = [&](int tooth, double level, double t0, const Probe& q0, double t1, const Probe& q1,
-                   double g1, Probe& out) {
-    double b_lo = t0, b_hi = t1, f_lo = q0.g - level;
-    if (f_lo == 0 || g1 == level) return out = f_lo == 0 ? q0 : q1, f_lo == 0 ? t0 : t1;
-    double t = b_lo + (b_hi - b_lo) * f_lo / (f_lo - (g1 - level));
-    if (hints) {
-      double near = INFINITY;
-      for (const Hint& h : *hints)
-        if (h.tooth == tooth && h.t > t0 && h.t < t1 && std::abs(h.t - t) < near)
-          near = std::abs(h.t - t), t = h.t;
-    }
-    for (int it = 0; it < 100; ++it) {
-      Eval e{};
-      if (!eval(t, e)) e.c = table_(t), e.f = NAN;  // (never within [a, b]: its ends were read)
-      out = probe(0, t, e.c);
-      const double f = q0.g + advance(t0, q0, t, out) - level;
-      if (std::abs(f) < 1e-9 || b_hi - b_lo <= 1e-13 * s_.rev) break;
-      if ((f < 0) == (f_lo < 0))
-        b_lo = t, f_lo = f;
-      else
-        b_hi = t;
-      const double next = t - f * e.r2 / (sense * e.f);
-      t = next > b_lo && next < b_hi ? next : 0.5 * (b_lo + b_hi);
-    }
-    return t;
-  };
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const Eval &e0 = cut[i], &e1 = cut[i + 1];
     const Probe& q0 = q[i];
@@ -217,7 +225,7 @@ bool PassageGeometry::crossings_lined(int only, double a, double b, double& belo
         [ascending](const Level& x, const Level& y) { return ascending ? x.g < y.g : x.g > y.g; });
     for (std::size_t l = 0; l < count; ++l) {
       Probe p0;
-      const double t = solve(levels[l].tooth, levels[l].g, e0.t, q0, e1.t, q[i + 1], g1, p0);
+      const double t = zone.solve(levels[l].tooth, levels[l].g, e0.t, q0, e1.t, q[i + 1], g1, p0);
       const Probe p = turned_to(p0, levels[l].tooth);
       roots.push_back({levels[l].tooth, t, p});
       if (p.over) below = std::min(below, p.height);
