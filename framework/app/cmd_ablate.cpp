@@ -44,35 +44,15 @@ std::string percent_change(double v, double full) {
   return cell(100 * (v - full) / full);
 }
 
-}  // namespace
-
-int cmd_ablate(const Args& args) {
-  BatchOptions b;
-  std::vector<std::string> swaps;
-  bool additive = false;
-  po::options_description opts(
-      "topomill ablate SCENE [--swap slot=model ...] [--jobs N]: the scene with each enabled "
-      "effect off in turn, all off (ideal), and each swapped model; writes ablation.csv, "
-      "ablation.md, ablation.png (Sa per variant) and ablation_maps.png (resumable)");
-  opts.add_options()("swap", po::value(&swaps)->composing(),
-                     "an alternative model for one variant, e.g. --swap dynamics=modal_exact")(
-      "additive", po::bool_switch(&additive),
-      "each effect alone on the ideal model instead of each switched off in turn");
-  add_batch_options(opts, b);
-  LoadedScene loaded = load_batch(args, opts, b, "ablation");
-  if (!loaded.scene) {
-    std::cout << opts << "\n";
-    return 0;
-  }
-  const Scene& scene = *loaded.scene;
-
-  // Every case also writes x3p (float64 with the grid's origin), which the side-by-side maps
-  // read back.
+// The variants: the full model; each enabled effect off in turn and all off (or, additive, the
+// ideal model and each effect alone on it); each swapped model. Every case also writes x3p
+// (float64 with the grid's origin), which the side-by-side maps read back.
+std::vector<Case> ablation_cases(const BatchOptions& b, const Scene& scene,
+                                 const std::vector<std::string>& swaps, bool additive) {
   std::string formats = "output.formats=[\"x3p\"";
   for (const auto& f : scene.table("output").strings("formats"))
     if (f != "x3p") formats += ",\"" + f + "\"";
   formats += "]";
-
   std::vector<Case> cases;
   auto add = [&](const std::string& name, std::vector<std::string> set) {
     Case c;
@@ -115,20 +95,18 @@ int cmd_ablate(const Args& args) {
     check_variant(b, set, "--swap " + spec, /*check_unused=*/true);
     add(table + "=" + spec.substr(eq + 1), set);
   }
-  if (cases.size() == 1)
-    std::cerr << "topomill: the scene enables no effect and --swap names no model: the "
-                 "ablation has the full model only\n";
+  return cases;
+}
 
-  const auto lock = lock_batch_output(b, cases);
-  const std::vector<CaseResult> results = run_cases(cases, runner_options(b));
-  if (Distribution::instance().rank() != 0) return 0;
-
+// One row per variant (its parameters and their change from the full model), its bars, and its
+// residual map when it ran; the number of failed variants.
+int ablation_table(const std::vector<Case>& cases, const std::vector<CaseResult>& results,
+                   ResultTable& table,
+                   std::vector<std::pair<std::string, std::vector<double>>>& bars,
+                   std::vector<std::pair<std::string, HeightMap>>& maps) {
   const CaseResult& full = results.front();
-  ResultTable table;
   table.header = {"variant",     "effects",     "status",      "Sa_um",  "Sq_um",  "Sz_um",
                   "dSa_percent", "dSq_percent", "dSz_percent", "time_s", "stages", "error"};
-  std::vector<std::pair<std::string, std::vector<double>>> bars;
-  std::vector<std::pair<std::string, HeightMap>> maps;
   int failed = 0;
   for (std::size_t i = 0; i < results.size(); ++i) {
     const CaseResult& r = results[i];
@@ -151,6 +129,44 @@ int cmd_ablate(const Args& args) {
       maps.emplace_back(name, read_x3p((fs::path(r.dir) / "height_residual.x3p").string()).map);
     failed += r.ok ? 0 : 1;
   }
+  return failed;
+}
+
+}  // namespace
+
+int cmd_ablate(const Args& args) {
+  BatchOptions b;
+  std::vector<std::string> swaps;
+  bool additive = false;
+  po::options_description opts(
+      "topomill ablate SCENE [--swap slot=model ...] [--jobs N]: the scene with each enabled "
+      "effect off in turn, all off (ideal), and each swapped model; writes ablation.csv, "
+      "ablation.md, ablation.png (Sa per variant) and ablation_maps.png (resumable)");
+  opts.add_options()("swap", po::value(&swaps)->composing(),
+                     "an alternative model for one variant, e.g. --swap dynamics=modal_exact")(
+      "additive", po::bool_switch(&additive),
+      "each effect alone on the ideal model instead of each switched off in turn");
+  add_batch_options(opts, b);
+  LoadedScene loaded = load_batch(args, opts, b, "ablation");
+  if (!loaded.scene) {
+    std::cout << opts << "\n";
+    return 0;
+  }
+  const Scene& scene = *loaded.scene;
+
+  std::vector<Case> cases = ablation_cases(b, scene, swaps, additive);
+  if (cases.size() == 1)
+    std::cerr << "topomill: the scene enables no effect and --swap names no model: the "
+                 "ablation has the full model only\n";
+
+  const auto lock = lock_batch_output(b, cases);
+  const std::vector<CaseResult> results = run_cases(cases, runner_options(b));
+  if (Distribution::instance().rank() != 0) return 0;
+
+  ResultTable table;
+  std::vector<std::pair<std::string, std::vector<double>>> bars;
+  std::vector<std::pair<std::string, HeightMap>> maps;
+  const int failed = ablation_table(cases, results, table, bars, maps);
   const fs::path dir = b.out_dir;
   table.write_csv((dir / "ablation.csv").string());
   table.write_markdown((dir / "ablation.md").string());

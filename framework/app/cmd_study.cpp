@@ -80,6 +80,107 @@ double stage(const CaseResult& r, const std::string& name) {
   return NAN;
 }
 
+// The study's cases: each evaluator at each spacing, coarse to fine, under each setting of its
+// knobs (their cross product), with the evaluator and spacing of each.
+struct StudyCases {
+  std::vector<Case> cases;
+  std::vector<std::string> evaluator;
+  std::vector<double> spacing;
+};
+
+StudyCases study_cases(const BatchOptions& b, const std::vector<std::string>& evaluators,
+                       const std::vector<double>& spacings, const std::vector<Knob>& knobs) {
+  StudyCases out;
+  for (const auto& e : evaluators) {
+    check_variant(b, {"evaluator.plugin=\"" + e + "\""}, "--evaluator " + e);
+    // The knob settings of this evaluator: their cross product (one empty setting if none).
+    std::vector<std::vector<std::pair<std::string, std::string>>> settings(1);
+    for (const auto& k : knobs) {
+      if (k.evaluator != e) continue;
+      std::vector<std::vector<std::pair<std::string, std::string>>> next;
+      for (const auto& s : settings)
+        for (const auto& v : k.values) {
+          auto n = s;
+          n.emplace_back(k.key, v);
+          next.push_back(n);
+        }
+      settings = next;
+    }
+    for (const auto& setting : settings)
+      for (double s : spacings) {
+        Case c;
+        c.overrides = {"evaluator.plugin=\"" + e + "\"", "region.spacing=" + spacing_text(s)};
+        std::string knob_text;
+        for (const auto& [k, v] : setting) {
+          c.overrides.push_back("evaluator." + k + "=" + v);
+          knob_text += (knob_text.empty() ? "" : " ") + k + "=" + v;
+        }
+        c.id = case_id(e + "__spacing=" + spacing_text(s) +
+                       (knob_text.empty() ? "" : "__" + knob_text));
+        c.columns = {{"evaluator", e}, {"spacing_mm", spacing_text(s)}, {"knobs", knob_text}};
+        check_variant(b, c.overrides, "--knob");
+        out.cases.push_back(c);
+        out.evaluator.push_back(e);
+        out.spacing.push_back(s);
+      }
+  }
+  return out;
+}
+
+// The reference: the reference evaluator's finest run that succeeded, preferring one without
+// knobs; results.size() if none.
+std::size_t reference_of(const StudyCases& sc, const std::vector<CaseResult>& results,
+                         const std::string& reference) {
+  std::size_t ref_index = results.size();
+  for (const bool plain : {true, false}) {
+    for (std::size_t i = 0; i < results.size(); ++i)
+      if (sc.evaluator[i] == reference && results[i].ok &&
+          (!plain || sc.cases[i].columns[2].second.empty()) &&
+          (ref_index == results.size() || sc.spacing[i] < sc.spacing[ref_index]))
+        ref_index = i;
+    if (ref_index != results.size()) break;
+  }
+  return ref_index;
+}
+
+// study.csv and study.md: one row per case; and the curves of the Sa error against the evaluate
+// time, one per evaluator and knob setting (the reference, with no error, left out). The number
+// of failed cases.
+int study_table(const StudyCases& sc, const std::vector<CaseResult>& results, const CaseResult* ref,
+                ResultTable& table, std::map<std::string, Series>& curves) {
+  const double sa_ref = ref ? parameter(*ref, "Sa") : NAN;
+  table.header = {"evaluator",   "spacing_mm", "knobs",      "status", "Sa_um", "Sq_um", "Sz_um",
+                  "dSa_percent", "time_s",     "evaluate_s", "nodes",  "work",  "error"};
+  int failed = 0;
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const CaseResult& r = results[i];
+    const auto& columns = sc.cases[i].columns;
+    const double sa = parameter(r, "Sa");
+    const double d = 100 * (sa - sa_ref) / sa_ref;
+    std::string work;
+    for (const auto& [k, v] : r.work)
+      if (k != "grid_nodes" && k != "nodes")
+        work += (work.empty() ? "" : " ") + k + "=" + std::to_string(v);
+    const auto nodes = r.work.count("grid_nodes") ? r.work.at("grid_nodes") : 0;
+    table.rows.push_back({columns[0].second, columns[1].second, columns[2].second,
+                          r.ok ? (&r == ref ? "reference" : "ok")
+                               : "failed (exit " + std::to_string(r.exit_code) + ")",
+                          cell(sa), cell(parameter(r, "Sq")), cell(parameter(r, "Sz")),
+                          &r == ref ? "0" : cell(d), r.ok ? cell(r.wall_s) : "",
+                          cell(stage(r, "evaluate")), r.ok ? std::to_string(nodes) : "", work,
+                          r.error});
+    failed += r.ok ? 0 : 1;
+    if (&r == ref || !r.ok) continue;
+    const std::string name =
+        columns[0].second + (columns[2].second.empty() ? "" : " " + columns[2].second);
+    Series& s = curves[name];
+    s.name = name;
+    s.x.push_back(stage(r, "evaluate"));
+    s.y.push_back(std::abs(d));
+  }
+  return failed;
+}
+
 }  // namespace
 
 int cmd_study(const Args& args) {
@@ -126,91 +227,15 @@ int cmd_study(const Args& args) {
           SourceRef{"command line"}, "--knob",
           "'" + k + "': '" + knob_list.back().evaluator + "' is not among the studied evaluators");
   }
-
-  std::vector<Case> cases;
-  std::vector<std::string> case_evaluator;
-  std::vector<double> case_spacing;
-  for (const auto& e : evaluators) {
-    check_variant(b, {"evaluator.plugin=\"" + e + "\""}, "--evaluator " + e);
-    // The knob settings of this evaluator: their cross product (one empty setting if none).
-    std::vector<std::vector<std::pair<std::string, std::string>>> settings(1);
-    for (const auto& k : knob_list) {
-      if (k.evaluator != e) continue;
-      std::vector<std::vector<std::pair<std::string, std::string>>> next;
-      for (const auto& s : settings)
-        for (const auto& v : k.values) {
-          auto n = s;
-          n.emplace_back(k.key, v);
-          next.push_back(n);
-        }
-      settings = next;
-    }
-    for (const auto& setting : settings)
-      for (double s : spacings) {
-        Case c;
-        c.overrides = {"evaluator.plugin=\"" + e + "\"", "region.spacing=" + spacing_text(s)};
-        std::string knob_text;
-        for (const auto& [k, v] : setting) {
-          c.overrides.push_back("evaluator." + k + "=" + v);
-          knob_text += (knob_text.empty() ? "" : " ") + k + "=" + v;
-        }
-        c.id = case_id(e + "__spacing=" + spacing_text(s) +
-                       (knob_text.empty() ? "" : "__" + knob_text));
-        c.columns = {{"evaluator", e}, {"spacing_mm", spacing_text(s)}, {"knobs", knob_text}};
-        check_variant(b, c.overrides, "--knob");
-        cases.push_back(c);
-        case_evaluator.push_back(e);
-        case_spacing.push_back(s);
-      }
-  }
-  const auto lock = lock_batch_output(b, cases);
-  const std::vector<CaseResult> results = run_cases(cases, runner_options(b));
+  const StudyCases sc = study_cases(b, evaluators, spacings, knob_list);
+  const auto lock = lock_batch_output(b, sc.cases);
+  const std::vector<CaseResult> results = run_cases(sc.cases, runner_options(b));
   if (Distribution::instance().rank() != 0) return 0;
-
-  // The reference: the reference evaluator's finest run, preferring one without knobs.
-  std::size_t ref_index = results.size();
-  for (const bool plain : {true, false}) {
-    for (std::size_t i = 0; i < results.size(); ++i)
-      if (case_evaluator[i] == reference && results[i].ok &&
-          (!plain || cases[i].columns[2].second.empty()) &&
-          (ref_index == results.size() || case_spacing[i] < case_spacing[ref_index]))
-        ref_index = i;
-    if (ref_index != results.size()) break;
-  }
+  const std::size_t ref_index = reference_of(sc, results, reference);
   const CaseResult* ref = ref_index < results.size() ? &results[ref_index] : nullptr;
-  const double sa_ref = ref ? parameter(*ref, "Sa") : NAN;
-
   ResultTable table;
-  table.header = {"evaluator",   "spacing_mm", "knobs",      "status", "Sa_um", "Sq_um", "Sz_um",
-                  "dSa_percent", "time_s",     "evaluate_s", "nodes",  "work",  "error"};
   std::map<std::string, Series> curves;
-  int failed = 0;
-  for (std::size_t i = 0; i < results.size(); ++i) {
-    const CaseResult& r = results[i];
-    const double sa = parameter(r, "Sa");
-    const double d = 100 * (sa - sa_ref) / sa_ref;
-    std::string work;
-    for (const auto& [k, v] : r.work)
-      if (k != "grid_nodes" && k != "nodes")
-        work += (work.empty() ? "" : " ") + k + "=" + std::to_string(v);
-    const auto nodes = r.work.count("grid_nodes") ? r.work.at("grid_nodes") : 0;
-    table.rows.push_back(
-        {cases[i].columns[0].second, cases[i].columns[1].second, cases[i].columns[2].second,
-         r.ok ? (&r == ref ? "reference" : "ok")
-              : "failed (exit " + std::to_string(r.exit_code) + ")",
-         cell(sa), cell(parameter(r, "Sq")), cell(parameter(r, "Sz")), &r == ref ? "0" : cell(d),
-         r.ok ? cell(r.wall_s) : "", cell(stage(r, "evaluate")), r.ok ? std::to_string(nodes) : "",
-         work, r.error});
-    failed += r.ok ? 0 : 1;
-    if (&r == ref || !r.ok) continue;
-    const std::string name =
-        cases[i].columns[0].second +
-        (cases[i].columns[2].second.empty() ? "" : " " + cases[i].columns[2].second);
-    Series& s = curves[name];
-    s.name = name;
-    s.x.push_back(stage(r, "evaluate"));
-    s.y.push_back(std::abs(d));
-  }
+  const int failed = study_table(sc, results, ref, table, curves);
   const fs::path dir = b.out_dir;
   table.write_csv((dir / "study.csv").string());
   table.write_markdown((dir / "study.md").string());
@@ -223,14 +248,14 @@ int cmd_study(const Args& args) {
   labels.log_x = labels.log_y = true;
   // The reference has no error to plot on a log axis: its time is marked instead.
   if (ref && ref->ok) {
-    const auto& c = cases[ref_index].columns;
+    const auto& c = sc.cases[ref_index].columns;
     labels.marks_x.push_back(
         {"reference: " + c[0].second + " " + c[1].second + " mm", stage(*ref, "evaluate")});
   }
   write_line_chart((dir / "study.png").string(), labels, list);
   std::cout << table.markdown() << "\n"
             << "reference: "
-            << (ref ? reference + " at " + cases[ref_index].columns[1].second + " mm"
+            << (ref ? reference + " at " + sc.cases[ref_index].columns[1].second + " mm"
                     : "none (it failed)")
             << "; " << (dir / "study.csv").string() << "\n";
   return failed ? 3 : 0;

@@ -76,15 +76,10 @@ const Roughness::Reported* find(const ParameterValues& v, const std::string& nam
     if (r.name == name) return &r;
   return nullptr;
 }
-}  // namespace
-
-CompareReport write_compare_report(const std::string& dir_given, const Comparison& c,
-                                   const CompareInputs& in) {
+// The report's staging directory beside `dir` (made anew under a name of its own, so that nothing
+// planted beside --out stands in for it), after `dir` is checked to be new or an earlier compare's.
+fs::path make_stage(const std::string& dir) {
   std::error_code ec;
-  // "out/" and "out" alike: the stage must sit beside the directory, not inside it.
-  fs::path normal = fs::path(dir_given).lexically_normal();
-  if (!normal.has_filename()) normal = normal.parent_path();
-  const std::string dir = normal.string();
   if (fs::exists(dir, ec) &&
       !(fs::is_directory(dir, ec) &&
         (fs::is_empty(dir, ec) || fs::exists(fs::path(dir) / "compare.json", ec))))
@@ -101,64 +96,62 @@ CompareReport write_compare_report(const std::string& dir_given, const Compariso
   const fs::path stage = stage_name;
   // mkdtemp makes it 0700; the report is shared as any directory the user makes.
   fs::permissions(stage, static_cast<fs::perms>(0777 & ~process_umask()), ec);
+  return stage;
+}
+
+// The pictures and the difference map, into `stage`; their names.
+std::vector<std::string> write_pictures(const fs::path& stage, const Comparison& c,
+                                        const CompareInputs& in) {
   auto path = [&](const char* name) { return (stage / name).string(); };
   std::vector<std::string> files;
-
-  // The difference's own statistics (um): how far apart the two are, node by node.
-  const Roughness d = roughness(c.difference.map, c.difference.valid);
-  double largest = 0;
-  for (std::size_t k = 0; k < c.difference.map.z.size(); ++k)
-    if (c.difference.is_valid(k)) largest = std::max(largest, std::abs(c.difference.map.z[k]));
-
-  try {
-    write_surface(path("difference.x3p"), c.difference, "--out",
-                  "measurement - simulation, registered: " + in.meas_file + " - " + in.sim_file);
-    files.push_back("difference.x3p");
-    HeatmapLabels dl;
-    dl.title = "measurement - simulation (registered)";
-    dl.y = "y (mm)";
-    dl.z = "difference (µm)";
-    write_png_heatmap(path("difference.png"), picture(c.difference), dl);
-    files.push_back("difference.png");
-    write_heatmap_panels(
-        path("surfaces.png"),
-        {{"simulation", picture(c.sim_overlap)}, {"measurement, registered", picture(c.aligned)}},
-        "x (mm)", "y (mm)");
-    files.push_back("surfaces.png");
-    for (const auto& [tag, surface, lay] : {std::tuple{"sim", &c.sim_overlap, &c.sim_lay},
-                                            std::tuple{"meas", &c.aligned, &c.meas_lay}}) {
-      const std::string who = std::string(tag) == "sim" ? "simulation" : "measurement";
-      HeatmapLabels al;
-      al.title = "areal autocorrelation, " + who;
-      al.x = "tx (mm)", al.y = "ty (mm)", al.z = "ACF";
-      Autocorrelation acf(*surface);
-      if (acf.defined()) {
-        write_png_heatmap(path((std::string("acf_") + tag + ".png").c_str()),
-                          picture(Surface{acf.image(), {}, ""}, 1e-3), al);
-        files.push_back(std::string("acf_") + tag + ".png");
-      }
-      // The spectrum out to eight times the frequency of the finer dominant period: the marks and
-      // their harmonics, not the noise floor to Nyquist.
-      const PowerSpectrum psd(*surface);
-      const double shortest = std::min(lay->across_mm > 0 ? lay->across_mm : INFINITY,
-                                       lay->along_mm > 0 ? lay->along_mm : INFINITY);
-      HeatmapLabels pl;
-      pl.title = "power spectral density, " + who;
-      pl.x = "fx (1/mm)", pl.y = "fy (1/mm)", pl.z = "log10 PSD (mm^4)";
-      const HeightMap image = psd.image();
-      write_png_heatmap(
-          path((std::string("psd_") + tag + ".png").c_str()),
-          picture(Surface{std::isfinite(shortest) ? crop(image, 8 / shortest) : image, {}, ""},
-                  1e-3),
-          pl);
-      files.push_back(std::string("psd_") + tag + ".png");
+  write_surface(path("difference.x3p"), c.difference, "--out",
+                "measurement - simulation, registered: " + in.meas_file + " - " + in.sim_file);
+  files.push_back("difference.x3p");
+  HeatmapLabels dl;
+  dl.title = "measurement - simulation (registered)";
+  dl.y = "y (mm)";
+  dl.z = "difference (µm)";
+  write_png_heatmap(path("difference.png"), picture(c.difference), dl);
+  files.push_back("difference.png");
+  write_heatmap_panels(
+      path("surfaces.png"),
+      {{"simulation", picture(c.sim_overlap)}, {"measurement, registered", picture(c.aligned)}},
+      "x (mm)", "y (mm)");
+  files.push_back("surfaces.png");
+  for (const auto& [tag, surface, lay] : {std::tuple{"sim", &c.sim_overlap, &c.sim_lay},
+                                          std::tuple{"meas", &c.aligned, &c.meas_lay}}) {
+    const std::string who = std::string(tag) == "sim" ? "simulation" : "measurement";
+    HeatmapLabels al;
+    al.title = "areal autocorrelation, " + who;
+    al.x = "tx (mm)", al.y = "ty (mm)", al.z = "ACF";
+    Autocorrelation acf(*surface);
+    if (acf.defined()) {
+      write_png_heatmap(path((std::string("acf_") + tag + ".png").c_str()),
+                        picture(Surface{acf.image(), {}, ""}, 1e-3), al);
+      files.push_back(std::string("acf_") + tag + ".png");
     }
-  } catch (...) {
-    fs::remove_all(stage, ec);
-    throw;
+    // The spectrum out to eight times the frequency of the finer dominant period: the marks and
+    // their harmonics, not the noise floor to Nyquist.
+    const PowerSpectrum psd(*surface);
+    const double shortest = std::min(lay->across_mm > 0 ? lay->across_mm : INFINITY,
+                                     lay->along_mm > 0 ? lay->along_mm : INFINITY);
+    HeatmapLabels pl;
+    pl.title = "power spectral density, " + who;
+    pl.x = "fx (1/mm)", pl.y = "fy (1/mm)", pl.z = "log10 PSD (mm^4)";
+    const HeightMap image = psd.image();
+    write_png_heatmap(
+        path((std::string("psd_") + tag + ".png").c_str()),
+        picture(Surface{std::isfinite(shortest) ? crop(image, 8 / shortest) : image, {}, ""}, 1e-3),
+        pl);
+    files.push_back(std::string("psd_") + tag + ".png");
   }
 
-  // compare.json
+  return files;
+}
+
+// compare.json's content.
+std::string compare_json(const Comparison& c, const CompareInputs& in, const Roughness& d,
+                         double largest, const std::vector<std::string>& files) {
   const Registration& r = c.registration;
   toml::table params;
   for (const auto& s : c.sim_parameters.reported) {
@@ -213,10 +206,14 @@ CompareReport write_compare_report(const std::string& dir_given, const Compariso
        toml::table{{"simulation", lay_table(c.sim_lay)}, {"measurement", lay_table(c.meas_lay)}}},
       {"files", std::move(file_list)},
   };
-  CompareReport rep;
-  rep.json = to_json(root);
+  return to_json(root);
+}
 
-  // compare.md and the console summary.
+// compare.md and the console summary into rep.
+void compare_texts(const Comparison& c, const CompareInputs& in, const Roughness& d, double largest,
+                   const std::vector<std::string>& files, const std::string& dir,
+                   CompareReport& rep) {
+  const Registration& r = c.registration;
   std::ostringstream md, con;
   md << "# topomill compare\n\n"
      << "- simulation: `" << in.sim_file << "`\n- measurement: `" << in.meas_file << "`\n"
@@ -283,6 +280,34 @@ CompareReport write_compare_report(const std::string& dir_given, const Compariso
   con << "\n";
   rep.markdown = md.str();
   rep.summary = con.str();
+}
+
+}  // namespace
+
+CompareReport write_compare_report(const std::string& dir_given, const Comparison& c,
+                                   const CompareInputs& in) {
+  // "out/" and "out" alike: the stage must sit beside the directory, not inside it.
+  fs::path normal = fs::path(dir_given).lexically_normal();
+  if (!normal.has_filename()) normal = normal.parent_path();
+  const std::string dir = normal.string();
+  const fs::path stage = make_stage(dir);
+  auto path = [&](const char* name) { return (stage / name).string(); };
+  std::error_code ec;
+  std::vector<std::string> files;
+  try {
+    files = write_pictures(stage, c, in);
+  } catch (...) {
+    fs::remove_all(stage, ec);
+    throw;
+  }
+  // The difference's own statistics (um): how far apart the two are, node by node.
+  const Roughness d = roughness(c.difference.map, c.difference.valid);
+  double largest = 0;
+  for (std::size_t k = 0; k < c.difference.map.z.size(); ++k)
+    if (c.difference.is_valid(k)) largest = std::max(largest, std::abs(c.difference.map.z[k]));
+  CompareReport rep;
+  rep.json = compare_json(c, in, d, largest, files);
+  compare_texts(c, in, d, largest, files, dir, rep);
   try {
     write_atomically(path("compare.json"), [&](std::ostream& o) { o << rep.json; });
     write_atomically(path("compare.md"), [&](std::ostream& o) { o << rep.markdown; });

@@ -8,11 +8,20 @@
 #include <sstream>
 
 #include "io/read_file.hpp"
+#include "scene_detail.hpp"
 #include "suggest.hpp"
 
 namespace fs = std::filesystem;
 
 namespace topomill {
+
+using detail::check_table;
+using detail::join;
+using detail::key_source;
+using detail::Locator;
+using detail::node_kind;
+using detail::printable;
+using detail::unknown_key_message;
 
 namespace {
 
@@ -42,218 +51,6 @@ const std::set<std::string> kRequiredCore = {"cutting", "region"};
 // Core tables that are left out of the scene when absent (an effect that costs nothing then).
 const std::set<std::string> kOptionalCore = {"runout"};
 
-std::string number_text(double x);
-
-// A user's text in a message: control characters (a NUL would cut the message) as \xNN.
-std::string printable(const std::string& text) {
-  std::string out;
-  for (const unsigned char c : text) {
-    if (c >= 0x20 && c != 0x7f) {
-      out += static_cast<char>(c);
-    } else {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x", c);
-      out += buf;
-    }
-  }
-  return out;
-}
-
-std::string node_kind(const toml::node& n) {
-  switch (n.type()) {
-    case toml::node_type::table:
-      return "a table";
-    case toml::node_type::array:
-      return "an array";
-    case toml::node_type::string:
-      return "the string \"" + std::string(*n.as_string()) + "\"";
-    case toml::node_type::integer:
-      return "the integer " + std::to_string(n.as_integer()->get());
-    case toml::node_type::floating_point:
-      return "the number " + number_text(n.as_floating_point()->get());
-    case toml::node_type::boolean:
-      return n.as_boolean()->get() ? "true" : "false";
-    default:
-      return "a date or time";
-  }
-}
-
-std::string number_text(double x) {
-  std::ostringstream os;
-  os.precision(12);
-  os << x;
-  return os.str();
-}
-
-// Resolves positions: a --set override, or the node's place in the file.
-class Locator {
- public:
-  Locator(const std::string& file, const std::map<std::string, SourceRef>& overrides)
-      : file_(file), overrides_(overrides) {}
-
-  SourceRef at(const std::string& path, const toml::source_region& src) const {
-    auto it = overrides_.find(path);
-    if (it != overrides_.end()) return it->second;
-    // A path under an override (a table written by --set) has the override's origin.
-    for (const auto& [key, ref] : overrides_)
-      if (path.rfind(key + ".", 0) == 0 || path.rfind(key + "[", 0) == 0) return ref;
-    SourceRef r{file_, static_cast<int>(src.begin.line), static_cast<int>(src.begin.column)};
-    if (r.line == 0) r.file = file_;
-    return r;
-  }
-
- private:
-  const std::string& file_;
-  const std::map<std::string, SourceRef>& overrides_;
-};
-
-std::string join(const std::vector<std::string>& names) {
-  std::string out;
-  for (std::size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + names[i];
-  return out.empty() ? "(none)" : out;
-}
-
-std::string unknown_key_message(const std::string& key, const std::vector<std::string>& valid) {
-  return with_candidates("unknown key", key, valid, "Valid keys here");
-}
-
-Value convert(const toml::node& node, const ParamSpec& spec, const std::string& path,
-              const Locator& loc);
-
-Params check_table(const toml::table& table, const Schema& schema, const std::string& path,
-                   const Locator& loc, const std::set<std::string>& reserved) {
-  Params params;
-  params.set_path(path);
-  params.set_table_where(loc.at(path, table.source()));
-  std::vector<std::string> valid = schema.names();
-  for (const auto& r : reserved) valid.insert(valid.begin(), r);
-  for (auto&& [k, node] : table) {
-    std::string key(k.str());
-    std::string full = path.empty() ? key : path + "." + key;
-    if (reserved.count(key)) continue;
-    const ParamSpec* spec = schema.find(key);
-    if (!spec) throw InputError(loc.at(full, k.source()), full, unknown_key_message(key, valid));
-    params.set(key, convert(node, *spec, full, loc), loc.at(full, node.source()));
-  }
-  for (const auto& spec : schema.specs()) {
-    if (params.has(spec.name)) continue;
-    std::string full = path.empty() ? spec.name : path + "." + spec.name;
-    if (spec.required)
-      throw InputError(
-          params.table_where(), full,
-          "missing required key: expected " + spec.expectation() + " (" + spec.doc + ")");
-    if (spec.default_value) params.set(spec.name, *spec.default_value);
-  }
-  return params;
-}
-
-double number_of(const toml::node& node, const ParamSpec& spec, const std::string& path,
-                 const Locator& loc, const char* what) {
-  if (!node.is_number())
-    throw InputError(loc.at(path, node.source()), path,
-                     std::string("expected ") + what + ", got " + node_kind(node));
-  double x = node.is_integer() ? static_cast<double>(node.as_integer()->get())
-                               : node.as_floating_point()->get();
-  std::string bad = spec.range_violation(x);
-  if (!bad.empty())
-    throw InputError(
-        loc.at(path, node.source()), path,
-        "value " + number_text(x) + " is out of range: expected " + spec.expectation());
-  return x;
-}
-
-Value convert(const toml::node& node, const ParamSpec& spec, const std::string& path,
-              const Locator& loc) {
-  auto wrong = [&]() {
-    return InputError(loc.at(path, node.source()), path,
-                      "expected " + spec.expectation() + ", got " + node_kind(node));
-  };
-  switch (spec.type) {
-    case ParamType::Number:
-      return number_of(node, spec, path, loc, "a number");
-    case ParamType::Integer: {
-      if (!node.is_integer()) throw wrong();
-      std::int64_t i = node.as_integer()->get();
-      if (!spec.range_violation(static_cast<double>(i)).empty())
-        throw InputError(
-            loc.at(path, node.source()), path,
-            "value " + std::to_string(i) + " is out of range: expected " + spec.expectation());
-      return i;
-    }
-    case ParamType::Bool:
-      if (!node.is_boolean()) throw wrong();
-      return node.as_boolean()->get();
-    case ParamType::String:
-      if (!node.is_string()) throw wrong();
-      return std::string(*node.as_string());
-    case ParamType::Choice: {
-      if (!node.is_string()) throw wrong();
-      std::string v(*node.as_string());
-      if (std::find(spec.choices.begin(), spec.choices.end(), v) == spec.choices.end())
-        throw wrong();
-      return v;
-    }
-    case ParamType::NumberArray: {
-      const toml::array* a = node.as_array();
-      if (!a || (spec.length && a->size() != *spec.length)) throw wrong();
-      std::vector<double> out;
-      for (std::size_t i = 0; i < a->size(); ++i)
-        out.push_back(
-            number_of((*a)[i], spec, path + "[" + std::to_string(i) + "]", loc, "a number"));
-      return out;
-    }
-    case ParamType::StringArray: {
-      const toml::array* a = node.as_array();
-      if (!a) throw wrong();
-      std::vector<std::string> out;
-      for (std::size_t i = 0; i < a->size(); ++i) {
-        const toml::node& e = (*a)[i];
-        bool ok = e.is_string() && (spec.choices.empty() ||
-                                    std::find(spec.choices.begin(), spec.choices.end(),
-                                              std::string(*e.as_string())) != spec.choices.end());
-        if (!ok) {
-          // A misspelt choice gets "did you mean" (e.g. "Vmcc" for Vmc) before the list.
-          std::string hint;
-          if (e.is_string())
-            if (const std::string near = closest_name(std::string(*e.as_string()), spec.choices);
-                !near.empty())
-              hint = " (did you mean '" + near + "'?)";
-          throw InputError(loc.at(path, e.source()), path + "[" + std::to_string(i) + "]",
-                           "expected " + spec.expectation() + ", got " + node_kind(e) + hint);
-        }
-        const std::string v(*e.as_string());
-        // A choice is a set member: twice would mean one output written twice (issue 18).
-        if (!spec.choices.empty() && std::find(out.begin(), out.end(), v) != out.end())
-          throw InputError(loc.at(path, e.source()), path + "[" + std::to_string(i) + "]",
-                           "'" + v + "' is listed twice: expected each choice at most once");
-        out.push_back(v);
-      }
-      return out;
-    }
-    case ParamType::TableArray: {
-      const toml::array* a = node.as_array();
-      if (!a) throw wrong();
-      std::vector<Params> out;
-      for (std::size_t i = 0; i < a->size(); ++i) {
-        std::string sub = path + "[" + std::to_string(i) + "]";
-        const toml::table* t = (*a)[i].as_table();
-        if (!t)
-          throw InputError(loc.at(sub, (*a)[i].source()), sub,
-                           "expected a table, got " + node_kind((*a)[i]));
-        out.push_back(check_table(*t, *spec.element, sub, loc, {}));
-      }
-      return out;
-    }
-  }
-  throw wrong();
-}
-
-const toml::source_region& key_source(const toml::table& t, const std::string& key) {
-  for (auto&& [k, v] : t)
-    if (k.str() == key) return k.source();
-  return t.source();
-}
-
 toml::table parse_or_throw(const std::string& text, const std::string& name) {
   try {
     return toml::parse(text, name);
@@ -262,6 +59,121 @@ toml::table parse_or_throw(const std::string& text, const std::string& name) {
                                static_cast<int>(e.source().begin.column)},
                      "", "malformed TOML: " + std::string(e.description()));
   }
+}
+
+// Only known tables at the top level, and plugin_paths.
+void check_top_level(const toml::table& root, const Locator& loc) {
+  std::vector<std::string> top = {"plugin_paths"};
+  for (const auto& [name, schema] : core_schemas()) top.push_back(name);
+  for (const auto& s : slot_table_specs()) top.push_back(s.table);
+  for (auto&& [k, node] : root) {
+    std::string key(k.str());
+    if (std::find(top.begin(), top.end(), key) == top.end())
+      throw InputError(loc.at(key, k.source()), key, unknown_key_message(key, top));
+    if (key != "plugin_paths" && !node.is_table())
+      throw InputError(loc.at(key, node.source()), key,
+                       "expected a table [" + key + "], got " + node_kind(node));
+  }
+}
+
+// A slot table's presence and whether it is enabled (an effect can be switched off), refusing
+// what cannot stand in it.
+SlotTable select_slot(const SlotTableSpec& spec, const toml::table* t, const Locator& loc,
+                      const SourceRef& file_only) {
+  SlotTable st;
+  st.table = spec.table;
+  st.slot = spec.slot;
+  st.present = t != nullptr;
+  st.where = t ? loc.at(spec.table, t->source()) : file_only;
+  st.enabled = st.present;
+  if (t && spec.effect) {
+    if (const toml::node* e = t->get("enabled")) {
+      std::string full = std::string(spec.table) + ".enabled";
+      if (!e->is_boolean())
+        throw InputError(loc.at(full, e->source()), full,
+                         "expected a boolean (true or false), got " + node_kind(*e));
+      st.enabled = e->as_boolean()->get();
+    }
+  }
+  if (!t && spec.required)
+    throw InputError(file_only, spec.table,
+                     std::string("missing required table [") + spec.table + "] selecting a " +
+                         slot_name(spec.slot) + " with plugin = \"...\"");
+  if (t && !spec.effect && t->contains("enabled"))
+    throw InputError(loc.at(std::string(spec.table) + ".enabled", key_source(*t, "enabled")),
+                     std::string(spec.table) + ".enabled",
+                     std::string("unknown key: only the effect tables (vibration, deflection, "
+                                 "springback) can be switched off"));
+  // The path was a core table choosing among built-in strategies; it is a slot now. Refused,
+  // not kept as an alias: one way to say it, and an old scene is told exactly what to write.
+  if (t && std::string(spec.table) == "path" && t->contains("strategy")) {
+    const toml::node* n = t->get("strategy");
+    const std::string was = n->is_string() ? std::string(*n->as_string()) : "raster";
+    const bool known = was == "raster" || was == "raster_across";
+    throw InputError(loc.at("path.strategy", key_source(*t, "strategy")), "path.strategy",
+                     "path.strategy is gone: the tool path is a plugin slot now; write plugin = "
+                     "\"" +
+                         (known ? was : std::string("raster")) +
+                         "\" in [path] instead (`topomill plugins` lists the tool paths: "
+                         "raster, raster_across, zigzag)");
+  }
+  return st;
+}
+
+// The model a used slot table names (or its default), found in the catalog for its slot, and the
+// table's values checked against the model's schema.
+void resolve_model(const SlotTableSpec& spec, SlotTable& st, const toml::table* t,
+                   PluginCatalog& catalog, const Locator& loc) {
+  std::string plugin_key = std::string(spec.table) + ".plugin";
+  const toml::node* pn = t ? t->get("plugin") : nullptr;
+  SourceRef plugin_where = pn ? loc.at(plugin_key, pn->source()) : st.where;
+  if (pn && !pn->is_string())
+    throw InputError(plugin_where, plugin_key,
+                     "expected the name of a " + std::string(slot_name(spec.slot)) +
+                         " model, got " + node_kind(*pn));
+  if (pn) {
+    st.plugin = std::string(*pn->as_string());
+    if (!is_model_name(st.plugin))  // before any library is looked for
+      throw InputError(plugin_where, plugin_key,
+                       "'" + printable(st.plugin) +
+                           "' is not a model name: expected letters, digits and underscores "
+                           "(up to 128), as in libtopomill_NAME.so");
+  } else if (spec.default_plugin) {
+    st.plugin = spec.default_plugin;
+  } else {
+    throw InputError(
+        st.where, plugin_key,
+        std::string("missing required key: the name of a ") + slot_name(spec.slot) + " model");
+  }
+
+  const ModelEntry* entry = nullptr;
+  try {
+    entry = catalog.find(st.plugin);
+  } catch (const PluginError& e) {
+    throw InputError(plugin_where, plugin_key, e.what());
+  }
+  if (entry && entry->info.slot != spec.slot)
+    throw InputError(plugin_where, plugin_key,
+                     std::string("unknown ") + slot_name(spec.slot) + " '" + st.plugin + "' ('" +
+                         st.plugin + "' is a " + slot_name(entry->info.slot) +
+                         "; `topomill plugins` lists the models per slot)");
+  if (!entry) {
+    // Listed from file names: a misspelt name opens no library (what each one is, per slot,
+    // is `topomill plugins`, which opens them all).
+    const std::vector<std::string> known = catalog.available_names();
+    throw InputError(
+        plugin_where, plugin_key,
+        with_candidates(std::string("unknown ") + slot_name(spec.slot) + " '" + st.plugin + "'",
+                        st.plugin, known,
+                        "Models on the plugin search path (`topomill plugins` "
+                        "lists them per slot)"));
+  }
+  st.model = entry;
+  static const toml::table empty;
+  std::set<std::string> reserved = {"plugin"};
+  if (spec.effect) reserved.insert("enabled");
+  st.params = check_table(t ? *t : empty, entry->schema, spec.table, loc, reserved);
+  st.params.set_table_where(st.where);
 }
 
 }  // namespace
@@ -377,18 +289,7 @@ Scene SceneDocument::resolve(PluginCatalog& catalog, bool check_unused) const {
   scene.file = file_;
   scene.plugin_paths = plugin_paths();
 
-  // Top level: only known tables and plugin_paths.
-  std::vector<std::string> top = {"plugin_paths"};
-  for (const auto& [name, schema] : core_schemas()) top.push_back(name);
-  for (const auto& s : slot_table_specs()) top.push_back(s.table);
-  for (auto&& [k, node] : *root_) {
-    std::string key(k.str());
-    if (std::find(top.begin(), top.end(), key) == top.end())
-      throw InputError(loc.at(key, k.source()), key, unknown_key_message(key, top));
-    if (key != "plugin_paths" && !node.is_table())
-      throw InputError(loc.at(key, node.source()), key,
-                       "expected a table [" + key + "], got " + node_kind(node));
-  }
+  check_top_level(*root_, loc);
 
   SourceRef file_only{file_};
   for (const auto& [name, schema] : core_schemas()) {
@@ -403,45 +304,9 @@ Scene SceneDocument::resolve(PluginCatalog& catalog, bool check_unused) const {
   // Which slot tables this run uses: effects when enabled, [force] when any effect is.
   bool any_effect = false;
   for (const auto& spec : slot_table_specs()) {
-    SlotTable st;
-    st.table = spec.table;
-    st.slot = spec.slot;
     const toml::table* t = root_->get_as<toml::table>(spec.table);
-    st.present = t != nullptr;
-    st.where = t ? loc.at(spec.table, t->source()) : file_only;
-    st.enabled = st.present;
-    if (t && spec.effect) {
-      if (const toml::node* e = t->get("enabled")) {
-        std::string full = std::string(spec.table) + ".enabled";
-        if (!e->is_boolean())
-          throw InputError(loc.at(full, e->source()), full,
-                           "expected a boolean (true or false), got " + node_kind(*e));
-        st.enabled = e->as_boolean()->get();
-      }
-      any_effect = any_effect || st.enabled;
-    }
-    if (!t && spec.required)
-      throw InputError(file_only, spec.table,
-                       std::string("missing required table [") + spec.table + "] selecting a " +
-                           slot_name(spec.slot) + " with plugin = \"...\"");
-    if (t && !spec.effect && t->contains("enabled"))
-      throw InputError(loc.at(std::string(spec.table) + ".enabled", key_source(*t, "enabled")),
-                       std::string(spec.table) + ".enabled",
-                       std::string("unknown key: only the effect tables (vibration, deflection, "
-                                   "springback) can be switched off"));
-    // The path was a core table choosing among built-in strategies; it is a slot now. Refused,
-    // not kept as an alias: one way to say it, and an old scene is told exactly what to write.
-    if (t && std::string(spec.table) == "path" && t->contains("strategy")) {
-      const toml::node* n = t->get("strategy");
-      const std::string was = n->is_string() ? std::string(*n->as_string()) : "raster";
-      const bool known = was == "raster" || was == "raster_across";
-      throw InputError(loc.at("path.strategy", key_source(*t, "strategy")), "path.strategy",
-                       "path.strategy is gone: the tool path is a plugin slot now; write plugin = "
-                       "\"" +
-                           (known ? was : std::string("raster")) +
-                           "\" in [path] instead (`topomill plugins` lists the tool paths: "
-                           "raster, raster_across, zigzag)");
-    }
+    SlotTable st = select_slot(spec, t, loc, file_only);
+    if (spec.effect) any_effect = any_effect || st.enabled;
     scene.slots[spec.table] = std::move(st);
   }
   // [force] serves the effects: without an enabled effect its library is never opened.
@@ -459,56 +324,7 @@ Scene SceneDocument::resolve(PluginCatalog& catalog, bool check_unused) const {
     bool used = st.enabled || (!t && spec.default_plugin);
     if (!used && !(check_unused && t)) continue;
 
-    std::string plugin_key = std::string(spec.table) + ".plugin";
-    const toml::node* pn = t ? t->get("plugin") : nullptr;
-    SourceRef plugin_where = pn ? loc.at(plugin_key, pn->source()) : st.where;
-    if (pn && !pn->is_string())
-      throw InputError(plugin_where, plugin_key,
-                       "expected the name of a " + std::string(slot_name(spec.slot)) +
-                           " model, got " + node_kind(*pn));
-    if (pn) {
-      st.plugin = std::string(*pn->as_string());
-      if (!is_model_name(st.plugin))  // before any library is looked for
-        throw InputError(plugin_where, plugin_key,
-                         "'" + printable(st.plugin) +
-                             "' is not a model name: expected letters, digits and underscores "
-                             "(up to 128), as in libtopomill_NAME.so");
-    } else if (spec.default_plugin) {
-      st.plugin = spec.default_plugin;
-    } else {
-      throw InputError(
-          st.where, plugin_key,
-          std::string("missing required key: the name of a ") + slot_name(spec.slot) + " model");
-    }
-
-    const ModelEntry* entry = nullptr;
-    try {
-      entry = catalog.find(st.plugin);
-    } catch (const PluginError& e) {
-      throw InputError(plugin_where, plugin_key, e.what());
-    }
-    if (entry && entry->info.slot != spec.slot)
-      throw InputError(plugin_where, plugin_key,
-                       std::string("unknown ") + slot_name(spec.slot) + " '" + st.plugin + "' ('" +
-                           st.plugin + "' is a " + slot_name(entry->info.slot) +
-                           "; `topomill plugins` lists the models per slot)");
-    if (!entry) {
-      // Listed from file names: a misspelt name opens no library (what each one is, per slot,
-      // is `topomill plugins`, which opens them all).
-      const std::vector<std::string> known = catalog.available_names();
-      throw InputError(
-          plugin_where, plugin_key,
-          with_candidates(std::string("unknown ") + slot_name(spec.slot) + " '" + st.plugin + "'",
-                          st.plugin, known,
-                          "Models on the plugin search path (`topomill plugins` "
-                          "lists them per slot)"));
-    }
-    st.model = entry;
-    static const toml::table empty;
-    std::set<std::string> reserved = {"plugin"};
-    if (spec.effect) reserved.insert("enabled");
-    st.params = check_table(t ? *t : empty, entry->schema, spec.table, loc, reserved);
-    st.params.set_table_where(st.where);
+    resolve_model(spec, st, t, catalog, loc);
     if (!used) st.model = nullptr;  // checked only
   }
   return scene;

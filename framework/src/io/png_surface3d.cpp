@@ -31,66 +31,33 @@ struct View {
   double depth(double x, double y) const { return x * sa + y * ca; }
 };
 
-}  // namespace
-
-void write_png_surface3d(const std::string& path, const HeightMap& map, const std::string& title,
-                         const std::string& x_label, const std::string& y_label) {
-  const Grid& g = map.grid;
-  const std::size_t k = std::max<std::size_t>(1, (std::max(g.nx, g.ny) + 159) / 160);
+// What the drawing needs of the map: the nodes drawn (every k-th, and the last), heights in um
+// about the mean of the finite ones (non-finite nodes drawn at the mean) within [lo, hi], the
+// lateral extent in mm, the vertical exaggeration and the view.
+struct Drawing {
+  const Grid& g;
+  const HeightMap& map;
   std::vector<std::size_t> is, js;
-  for (std::size_t i = 0; i < g.nx; i += k) is.push_back(i);
-  for (std::size_t j = 0; j < g.ny; j += k) js.push_back(j);
-  if (is.back() != g.nx - 1) is.push_back(g.nx - 1);
-  if (js.back() != g.ny - 1) js.push_back(g.ny - 1);
-  // Heights in um about the mean of the finite ones; non-finite nodes drawn at the mean.
-  double sum = 0, n = 0, lo = INFINITY, hi = -INFINITY;
-  for (double z : map.z)
-    if (std::isfinite(z)) sum += z, n += 1, lo = std::min(lo, z), hi = std::max(hi, z);
-  const double mean = n > 0 ? sum / n : 0;
-  lo = n > 0 ? (lo - mean) * 1e3 : -0.5, hi = n > 0 ? (hi - mean) * 1e3 : 0.5;
-  if (!(hi > lo)) lo -= 0.5, hi += 0.5;
-  auto h_um = [&](std::size_t i, std::size_t j) {
+  double mean = 0, lo = 0, hi = 0, xw = 0, yw = 0, exaggeration = 1;
+  View view{};
+
+  double h_um(std::size_t i, std::size_t j) const {
     const double z = map.at(i, j);
     return std::isfinite(z) ? (z - mean) * 1e3 : 0.0;
-  };
-  // Lateral extent in mm; the height range shown as about a fifth of it.
-  const double xw = std::max(1e-12, (g.nx - 1) * g.dx), yw = std::max(1e-12, (g.ny - 1) * g.dy);
-  const double exaggeration = round125(0.2 * std::max(xw, yw) / ((hi - lo) * 1e-3));
-  auto zed = [&](double um) { return um * 1e-3 * exaggeration; };  // mm on the drawing
-
-  const double az = 35 * M_PI / 180, el = 30 * M_PI / 180;
-  View view{std::cos(az), std::sin(az), std::cos(el), std::sin(el)};
-  // Fit the box (base at lo, top at hi) into the drawing area.
-  const int w = 900, h = 620;
-  const double left = 70, top = 70, area_w = 640, area_h = 480;
-  double umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
-  for (double x : {0.0, xw})
-    for (double y : {0.0, yw})
-      for (double z : {zed(lo), zed(hi)}) {
-        double u, v;
-        view.project(x, y, z, u, v);
-        umin = std::min(umin, u), umax = std::max(umax, u), vmin = std::min(vmin, v),
-        vmax = std::max(vmax, v);
-      }
-  view.scale = std::min(area_w / (umax - umin), area_h / (vmax - vmin));
-  view.ox = left + (area_w - view.scale * (umax - umin)) / 2 - view.scale * umin;
-  view.oy = top + (area_h - view.scale * (vmax - vmin)) / 2 - view.scale * vmin;
-
-  Canvas cv(w, h);
-  cairo_t* cr = *cv;
-  // The base's back edges first (the surface hides what is behind it).
-  auto line3 = [&](double x0, double y0, double z0, double x1, double y1, double z1) {
+  }
+  double zed(double um) const { return um * 1e-3 * exaggeration; }  // mm on the drawing
+  void line3(cairo_t* cr, double x0, double y0, double z0, double x1, double y1, double z1) const {
     double u0, v0, u1, v1;
     view.project(x0, y0, z0, u0, v0);
     view.project(x1, y1, z1, u1, v1);
     cairo_move_to(cr, u0, v0), cairo_line_to(cr, u1, v1), cairo_stroke(cr);
-  };
-  cairo_set_line_width(cr, 1);
-  cairo_set_source_rgb(cr, 0.6, 0.6, 0.6);
-  line3(0, yw, zed(lo), xw, yw, zed(lo));
-  line3(xw, 0, zed(lo), xw, yw, zed(lo));
-  line3(0, yw, zed(lo), 0, yw, zed(hi));
+  }
+  void cells(cairo_t* cr) const;
+  void wall(cairo_t* cr, bool along_x) const;
+  void axes(Canvas& cv, const std::string& x_label, const std::string& y_label) const;
+};
 
+void Drawing::cells(cairo_t* cr) const {
   // Cells from the farthest to the nearest (painter's order), each lit from the upper left.
   struct Cell {
     std::size_t a, b;
@@ -129,31 +96,33 @@ void write_png_surface3d(const std::string& path, const HeightMap& map, const st
     cairo_set_line_width(cr, 0.7);
     cairo_stroke(cr);
   }
+}
 
-  // The two nearest side walls (y = 0 and x = 0) from the surface's edge down to the base, in
-  // grey: the block reads as a solid.
-  auto wall = [&](bool along_x) {
-    const auto& idx = along_x ? is : js;
-    double u, v;
-    cairo_new_path(cr);
-    for (std::size_t a = 0; a < idx.size(); ++a) {
-      const std::size_t i = along_x ? idx[a] : 0, j = along_x ? 0 : idx[a];
-      view.project(i * g.dx, j * g.dy, zed(h_um(i, j)), u, v);
-      a == 0 ? cairo_move_to(cr, u, v) : cairo_line_to(cr, u, v);
-    }
-    view.project(along_x ? xw : 0, along_x ? 0 : yw, zed(lo), u, v), cairo_line_to(cr, u, v);
-    view.project(0, 0, zed(lo), u, v), cairo_line_to(cr, u, v);
-    cairo_close_path(cr);
-    cairo_set_source_rgb(cr, along_x ? 0.80 : 0.70, along_x ? 0.80 : 0.70, along_x ? 0.80 : 0.70);
-    cairo_fill_preserve(cr);
-    cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
-    cairo_set_line_width(cr, 0.8);
-    cairo_stroke(cr);
-  };
-  wall(true), wall(false);
+// A near side wall (y = 0 along x, else x = 0) from the surface's edge down to the base, in grey:
+// the block reads as a solid.
+void Drawing::wall(cairo_t* cr, bool along_x) const {
+  const auto& idx = along_x ? is : js;
+  double u, v;
+  cairo_new_path(cr);
+  for (std::size_t a = 0; a < idx.size(); ++a) {
+    const std::size_t i = along_x ? idx[a] : 0, j = along_x ? 0 : idx[a];
+    view.project(i * g.dx, j * g.dy, zed(h_um(i, j)), u, v);
+    a == 0 ? cairo_move_to(cr, u, v) : cairo_line_to(cr, u, v);
+  }
+  view.project(along_x ? xw : 0, along_x ? 0 : yw, zed(lo), u, v), cairo_line_to(cr, u, v);
+  view.project(0, 0, zed(lo), u, v), cairo_line_to(cr, u, v);
+  cairo_close_path(cr);
+  cairo_set_source_rgb(cr, along_x ? 0.80 : 0.70, along_x ? 0.80 : 0.70, along_x ? 0.80 : 0.70);
+  cairo_fill_preserve(cr);
+  cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
+  cairo_set_line_width(cr, 0.8);
+  cairo_stroke(cr);
+}
 
-  // The front base edges with ticks: x along y = 0, s along x = 0; the height axis at the
-  // back-left corner.
+// The front base edges with ticks: x along y = 0, s along x = 0; the height axis at the back-left
+// corner.
+void Drawing::axes(Canvas& cv, const std::string& x_label, const std::string& y_label) const {
+  cairo_t* cr = *cv;
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_set_line_width(cr, 1);
   for (double t : ticks(g.x0, g.x0 + xw, false)) {
@@ -186,13 +155,68 @@ void write_png_surface3d(const std::string& path, const HeightMap& map, const st
     view.project(0, yw, zed(hi), u, v);
     cv.text(u, v - 12, "h (µm)", 0.5, 1);
   }
+}
+
+}  // namespace
+
+void write_png_surface3d(const std::string& path, const HeightMap& map, const std::string& title,
+                         const std::string& x_label, const std::string& y_label) {
+  const Grid& g = map.grid;
+  Drawing d{g, map, {}, {}};
+  const std::size_t k = std::max<std::size_t>(1, (std::max(g.nx, g.ny) + 159) / 160);
+  for (std::size_t i = 0; i < g.nx; i += k) d.is.push_back(i);
+  for (std::size_t j = 0; j < g.ny; j += k) d.js.push_back(j);
+  if (d.is.back() != g.nx - 1) d.is.push_back(g.nx - 1);
+  if (d.js.back() != g.ny - 1) d.js.push_back(g.ny - 1);
+  double sum = 0, n = 0, lo = INFINITY, hi = -INFINITY;
+  for (double z : map.z)
+    if (std::isfinite(z)) sum += z, n += 1, lo = std::min(lo, z), hi = std::max(hi, z);
+  d.mean = n > 0 ? sum / n : 0;
+  lo = n > 0 ? (lo - d.mean) * 1e3 : -0.5, hi = n > 0 ? (hi - d.mean) * 1e3 : 0.5;
+  if (!(hi > lo)) lo -= 0.5, hi += 0.5;
+  d.lo = lo, d.hi = hi;
+  // Lateral extent in mm; the height range shown as about a fifth of it.
+  const double xw = std::max(1e-12, (g.nx - 1) * g.dx), yw = std::max(1e-12, (g.ny - 1) * g.dy);
+  d.xw = xw, d.yw = yw;
+  d.exaggeration = round125(0.2 * std::max(xw, yw) / ((hi - lo) * 1e-3));
+
+  const double az = 35 * M_PI / 180, el = 30 * M_PI / 180;
+  View& view = d.view;
+  view = View{std::cos(az), std::sin(az), std::cos(el), std::sin(el)};
+  // Fit the box (base at lo, top at hi) into the drawing area.
+  const int w = 900, h = 620;
+  const double left = 70, top = 70, area_w = 640, area_h = 480;
+  double umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
+  for (double x : {0.0, xw})
+    for (double y : {0.0, yw})
+      for (double z : {d.zed(lo), d.zed(hi)}) {
+        double u, v;
+        view.project(x, y, z, u, v);
+        umin = std::min(umin, u), umax = std::max(umax, u), vmin = std::min(vmin, v),
+        vmax = std::max(vmax, v);
+      }
+  view.scale = std::min(area_w / (umax - umin), area_h / (vmax - vmin));
+  view.ox = left + (area_w - view.scale * (umax - umin)) / 2 - view.scale * umin;
+  view.oy = top + (area_h - view.scale * (vmax - vmin)) / 2 - view.scale * vmin;
+
+  Canvas cv(w, h);
+  cairo_t* cr = *cv;
+  // The base's back edges first (the surface hides what is behind it).
+  cairo_set_line_width(cr, 1);
+  cairo_set_source_rgb(cr, 0.6, 0.6, 0.6);
+  d.line3(cr, 0, yw, d.zed(lo), xw, yw, d.zed(lo));
+  d.line3(cr, xw, 0, d.zed(lo), xw, yw, d.zed(lo));
+  d.line3(cr, 0, yw, d.zed(lo), 0, yw, d.zed(hi));
+  d.cells(cr);
+  d.wall(cr, true), d.wall(cr, false);
+  d.axes(cv, x_label, y_label);
   colour_bar(cv, w - 110, top + 40, 18, 300, lo, hi, "h - mean (µm)");
   cairo_set_font_size(cr, 15);
   cv.text(w / 2.0, 14, title, 0.5, 0);
   cairo_set_font_size(cr, 13);
   char note[96];
   std::snprintf(note, sizeof note, "vertical exaggeration %g : 1 (heights in µm, lateral in mm)",
-                exaggeration);
+                d.exaggeration);
   cv.text(w / 2.0, 38, note, 0.5, 0);
   cv.write(path);
 }

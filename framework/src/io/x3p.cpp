@@ -124,6 +124,74 @@ std::string lower(std::string s) {
   return s;
 }
 
+// The points of a DataLink: binary little-endian values of the CZ DataType (exactly nx x ny of
+// them) and, where linked, the valid points' bits, each checked against its MD5 where given.
+void read_linked_points(Archive& zip, const pugi::xml_node& link, const std::string& type,
+                        double z_off, double z_inc, Surface& s) {
+  const std::size_t n = s.map.grid.size();
+  const std::string name = link.child("PointDataLink").text().as_string();
+  const std::size_t width = type == "I" ? 2 : type == "L" || type == "F" ? 4 : type == "D" ? 8 : 0;
+  if (!width) zip.fail("unknown CZ DataType '" + type + "' (expected I, L, F or D)");
+  // Exactly what the matrix dimension asks for (nx x ny points of type CZ DataType).
+  const std::string data = zip.read(name, n * width, /*exact=*/true);
+  const std::string want = link.child("MD5ChecksumPointData").text().as_string();
+  if (!want.empty() && lower(want) != md5_hex(data.data(), data.size()))
+    zip.fail("the MD5 checksum of " + name + " does not match MD5ChecksumPointData");
+  for (std::size_t i = 0; i < n; ++i) {
+    const char* p = data.data() + i * width;  // little-endian, as the standard says
+    double v = 0;
+    if (type == "I") {
+      std::int16_t x;
+      std::memcpy(&x, p, 2);
+      v = x;
+    }
+    if (type == "L") {
+      std::int32_t x;
+      std::memcpy(&x, p, 4);
+      v = x;
+    }
+    if (type == "F") {
+      float x;
+      std::memcpy(&x, p, 4);
+      v = x;
+    }
+    if (type == "D") std::memcpy(&v, p, 8);
+    s.map.z[i] = (z_off + z_inc * v) * 1e3;
+  }
+  const std::string valid_name = link.child("ValidPointsLink").text().as_string();
+  if (!valid_name.empty()) {
+    const std::string bits = zip.read(valid_name, (n + 7) / 8 + 64);
+    const std::string vwant = link.child("MD5ChecksumValidPoints").text().as_string();
+    if (!vwant.empty() && lower(vwant) != md5_hex(bits.data(), bits.size()))
+      zip.fail("the MD5 checksum of " + valid_name + " does not match MD5ChecksumValidPoints");
+    if (bits.size() < (n + 7) / 8)
+      zip.fail(valid_name + " holds " + std::to_string(bits.size()) + " bytes; " +
+               std::to_string(n) + " points need " + std::to_string((n + 7) / 8));
+    for (std::size_t i = 0; i < n; ++i)
+      s.valid[i] = (static_cast<unsigned char>(bits[i / 8]) >> (i % 8)) & 1u;
+  }
+}
+
+// The points of a DataList, one Datum each (an empty Datum an invalid point).
+void read_listed_points(Archive& zip, const pugi::xml_node& list, double z_off, double z_inc,
+                        Surface& s) {
+  const std::size_t n = s.map.grid.size();
+  std::size_t i = 0;
+  for (pugi::xml_node d = list.child("Datum"); d; d = d.next_sibling("Datum"), ++i) {
+    if (i >= n) zip.fail("DataList holds more points than the matrix dimension");
+    const std::string text = d.text().as_string();
+    if (text.empty()) {
+      s.valid[i] = 0;  // an empty Datum is an invalid point
+      s.map.z[i] = 0;
+    } else {
+      s.map.z[i] = (z_off + z_inc * d.text().as_double()) * 1e3;
+    }
+  }
+  if (i != n)
+    zip.fail("DataList holds " + std::to_string(i) + " points; the matrix has " +
+             std::to_string(n));
+}
+
 }  // namespace
 
 Surface read_x3p(const std::string& path) {
@@ -184,69 +252,12 @@ Surface read_x3p(const std::string& path) {
 
   const pugi::xml_node link = root.child("Record3").child("DataLink");
   const pugi::xml_node list = root.child("Record3").child("DataList");
-  if (link) {
-    const std::string name = link.child("PointDataLink").text().as_string();
-    const std::size_t width = type == "I"                  ? 2
-                              : type == "L" || type == "F" ? 4
-                              : type == "D"                ? 8
-                                                           : 0;
-    if (!width) zip.fail("unknown CZ DataType '" + type + "' (expected I, L, F or D)");
-    // Exactly what the matrix dimension asks for (nx x ny points of type CZ DataType).
-    const std::string data = zip.read(name, n * width, /*exact=*/true);
-    const std::string want = link.child("MD5ChecksumPointData").text().as_string();
-    if (!want.empty() && lower(want) != md5_hex(data.data(), data.size()))
-      zip.fail("the MD5 checksum of " + name + " does not match MD5ChecksumPointData");
-    for (std::size_t i = 0; i < n; ++i) {
-      const char* p = data.data() + i * width;  // little-endian, as the standard says
-      double v = 0;
-      if (type == "I") {
-        std::int16_t x;
-        std::memcpy(&x, p, 2);
-        v = x;
-      }
-      if (type == "L") {
-        std::int32_t x;
-        std::memcpy(&x, p, 4);
-        v = x;
-      }
-      if (type == "F") {
-        float x;
-        std::memcpy(&x, p, 4);
-        v = x;
-      }
-      if (type == "D") std::memcpy(&v, p, 8);
-      s.map.z[i] = (z_off + z_inc * v) * 1e3;
-    }
-    const std::string valid_name = link.child("ValidPointsLink").text().as_string();
-    if (!valid_name.empty()) {
-      const std::string bits = zip.read(valid_name, (n + 7) / 8 + 64);
-      const std::string vwant = link.child("MD5ChecksumValidPoints").text().as_string();
-      if (!vwant.empty() && lower(vwant) != md5_hex(bits.data(), bits.size()))
-        zip.fail("the MD5 checksum of " + valid_name + " does not match MD5ChecksumValidPoints");
-      if (bits.size() < (n + 7) / 8)
-        zip.fail(valid_name + " holds " + std::to_string(bits.size()) + " bytes; " +
-                 std::to_string(n) + " points need " + std::to_string((n + 7) / 8));
-      for (std::size_t i = 0; i < n; ++i)
-        s.valid[i] = (static_cast<unsigned char>(bits[i / 8]) >> (i % 8)) & 1u;
-    }
-  } else if (list) {
-    std::size_t i = 0;
-    for (pugi::xml_node d = list.child("Datum"); d; d = d.next_sibling("Datum"), ++i) {
-      if (i >= n) zip.fail("DataList holds more points than the matrix dimension");
-      const std::string text = d.text().as_string();
-      if (text.empty()) {
-        s.valid[i] = 0;  // an empty Datum is an invalid point
-        s.map.z[i] = 0;
-      } else {
-        s.map.z[i] = (z_off + z_inc * d.text().as_double()) * 1e3;
-      }
-    }
-    if (i != n)
-      zip.fail("DataList holds " + std::to_string(i) + " points; the matrix has " +
-               std::to_string(n));
-  } else {
+  if (link)
+    read_linked_points(zip, link, type, z_off, z_inc, s);
+  else if (list)
+    read_listed_points(zip, list, z_off, z_inc, s);
+  else
     zip.fail("Record3 has neither a DataLink nor a DataList");
-  }
   for (std::size_t i = 0; i < n; ++i)
     if (s.valid[i] && !std::isfinite(s.map.z[i]))
       zip.fail("point " + std::to_string(i) + " is not finite (NaN or Inf) yet marked valid");

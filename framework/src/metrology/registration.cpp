@@ -48,6 +48,62 @@ std::vector<double> cross(const std::vector<std::complex<double>>& F,
   return out;
 }
 
+// The measured map's box in plan turned back by `turn`'s angle about its centre o: where the
+// reference's lattice nodes whose turned position falls in the measured map lie.
+struct Box {
+  double lo_x, hi_x, lo_y, hi_y;
+};
+Box turned_back(const Grid& gm, const Transform& turn) {
+  double lo_x = INFINITY, hi_x = -INFINITY, lo_y = INFINITY, hi_y = -INFINITY;
+  const double c = std::cos(-turn.angle), s = std::sin(-turn.angle);
+  const double xs[2] = {gm.x0, gm.x0 + static_cast<double>(gm.nx - 1) * gm.dx};
+  const double ys[2] = {gm.y0, gm.y0 + static_cast<double>(gm.ny - 1) * gm.dy};
+  for (double x : xs)
+    for (double y : ys) {
+      const double u = x - turn.o.x(), v = y - turn.o.y();
+      const double bx = c * u - s * v + turn.o.x(), by = s * u + c * v + turn.o.y();
+      lo_x = std::min(lo_x, bx), hi_x = std::max(hi_x, bx);
+      lo_y = std::min(lo_y, by), hi_y = std::max(hi_y, by);
+    }
+  return {lo_x, hi_x, lo_y, hi_y};
+}
+
+// A whole-node shift of the coarse step: its normalised cross-correlation, the overlap in nodes,
+// and the shift in the reference's lattice (mm).
+struct Candidate {
+  double r, count, tx, ty;
+};
+
+// The coarse step's choice: a surface with periodic marks matches itself a period away nearly as
+// well as in place, so of the shifts within kTie of the best correlation, the one that keeps the
+// most overlap (the nearest in place), then the better correlated; turned into the measurement.
+Registration best_shift(const std::vector<Candidate>& candidates,
+                        const RegistrationOptions& options, const Surface& meas,
+                        const Transform& turn) {
+  constexpr double kTie = 0.01;
+  double top = -INFINITY;
+  for (const auto& c : candidates) top = std::max(top, c.r);
+  Registration best;
+  best.correlation = -INFINITY;
+  double most = -1;
+  for (const auto& c : candidates)
+    if (c.r >= top - kTie && (c.count > most || (c.count == most && c.r > best.correlation)))
+      most = c.count, best.correlation = c.r, best.tx = c.tx, best.ty = c.ty;
+  if (candidates.empty())
+    throw InputError(
+        SourceRef{meas.source}, "",
+        "no shift leaves the two maps overlapping by half of the smaller" +
+            std::string(options.max_shift > 0 ? " within the largest shift allowed" : "") +
+            ": expected maps of the same area of the surface (crop or widen them, "
+            "or raise --max-shift)");
+  // A shift along the lattice is, in the measurement, that shift turned by the angle.
+  const double c = std::cos(turn.angle), s = std::sin(turn.angle);
+  const double tx = best.tx, ty = best.ty;
+  best.tx = c * tx - s * ty, best.ty = s * tx + c * ty;
+  best.angle = turn.angle;
+  return best;
+}
+
 // Step 1: the whole-node shift (in the reference's lattice) with the best normalised
 // cross-correlation, the measurement first turned by `angle` about o.
 Registration coarse(const Surface& ref, const Surface& meas, const Transform& turn,
@@ -67,19 +123,8 @@ Registration coarse(const Surface& ref, const Surface& meas, const Transform& tu
   // measured map's box, found by turning that box back.
   Transform turned = turn;
   turned.tx = turned.ty = 0;
-  double lo_x = INFINITY, hi_x = -INFINITY, lo_y = INFINITY, hi_y = -INFINITY;
-  {
-    const double c = std::cos(-turn.angle), s = std::sin(-turn.angle);
-    const double xs[2] = {gm.x0, gm.x0 + static_cast<double>(gm.nx - 1) * gm.dx};
-    const double ys[2] = {gm.y0, gm.y0 + static_cast<double>(gm.ny - 1) * gm.dy};
-    for (double x : xs)
-      for (double y : ys) {
-        const double u = x - turn.o.x(), v = y - turn.o.y();
-        const double bx = c * u - s * v + turn.o.x(), by = s * u + c * v + turn.o.y();
-        lo_x = std::min(lo_x, bx), hi_x = std::max(hi_x, bx);
-        lo_y = std::min(lo_y, by), hi_y = std::max(hi_y, by);
-      }
-  }
+  const Box box = turned_back(gm, turn);
+  const double lo_x = box.lo_x, hi_x = box.hi_x, lo_y = box.lo_y, hi_y = box.hi_y;
   const auto ib0 = static_cast<std::ptrdiff_t>(std::floor((lo_x - ga.x0) / hx));
   const auto jb0 = static_cast<std::ptrdiff_t>(std::floor((lo_y - ga.y0) / hy));
   const auto nxb =
@@ -127,10 +172,7 @@ Registration coarse(const Surface& ref, const Surface& meas, const Transform& tu
              SAA = cross(FA2, FmB, px, py), SBB = cross(FmA, FB2, px, py),
              SAB = cross(FA, FB, px, py);
   const double need = 0.5 * std::min(valid_a, valid_b);
-  // Every admissible shift's correlation and overlap; then the choice among them.
-  struct Candidate {
-    double r, count, tx, ty;
-  };
+  // Every admissible shift's correlation and overlap; then the choice among them (best_shift).
   std::vector<Candidate> candidates;
   for (std::size_t j = 0; j < py; ++j)
     for (std::size_t i = 0; i < px; ++i) {
@@ -148,31 +190,7 @@ Registration coarse(const Surface& ref, const Surface& meas, const Transform& tu
       if (!(va > 0 && vb > 0)) continue;
       candidates.push_back({(SAB[q] - SA[q] * SB[q] / count) / std::sqrt(va * vb), count, tx, ty});
     }
-  // A surface with periodic marks matches itself a period away nearly as well as in place: of
-  // the shifts within kTie of the best correlation, the one that keeps the most overlap (the
-  // nearest in place), then the better correlated.
-  constexpr double kTie = 0.01;
-  double top = -INFINITY;
-  for (const auto& c : candidates) top = std::max(top, c.r);
-  Registration best;
-  best.correlation = -INFINITY;
-  double most = -1;
-  for (const auto& c : candidates)
-    if (c.r >= top - kTie && (c.count > most || (c.count == most && c.r > best.correlation)))
-      most = c.count, best.correlation = c.r, best.tx = c.tx, best.ty = c.ty;
-  if (candidates.empty())
-    throw InputError(
-        SourceRef{meas.source}, "",
-        "no shift leaves the two maps overlapping by half of the smaller" +
-            std::string(options.max_shift > 0 ? " within the largest shift allowed" : "") +
-            ": expected maps of the same area of the surface (crop or widen them, "
-            "or raise --max-shift)");
-  // A shift along the lattice is, in the measurement, that shift turned by the angle.
-  const double c = std::cos(turn.angle), s = std::sin(turn.angle);
-  const double tx = best.tx, ty = best.ty;
-  best.tx = c * tx - s * ty, best.ty = s * tx + c * ty;
-  best.angle = turn.angle;
-  return best;
+  return best_shift(candidates, options, meas, turn);
 }
 
 // MEAS(T(p)) - REF(p) - offset over a set of the reference's nodes where the measurement has a
