@@ -1,4 +1,4 @@
-// How the row walk predicts a followed crossing at the next node (RowSweep::Root::ahead): by
+// How the row walk predicts a followed crossing at the next node (Root::ahead, root.hpp): by
 // extrapolating a polynomial of degree 5 through the root's times at the row's last nodes, with
 // the orders its history does not hold yet left out, and an order whose difference does not
 // shrink left out too. Checked against sequences written here: powers of (n + 20) in the node's
