@@ -178,6 +178,40 @@ Data read_csv(const std::string& text) {
   return d;
 }
 
+// FEDRAT's arguments: the rate and its unit (MMPM, the default, or IPM), in mm/min.
+double feed_rate(const std::vector<Field>& args, int line) {
+  double rate = NAN, unit = 1;
+  for (const Field& a : args) {
+    const std::string u = upper(a.text);
+    if (u == "MMPM")
+      unit = 1;
+    else if (u == "IPM")
+      unit = 25.4;
+    else
+      rate = number(a, line, "the feed rate (or MMPM, IPM)");
+  }
+  if (!(rate > 0))
+    throw ReadError(line, args.empty() ? 1 : args[0].column,
+                    "FEDRAT without a rate above 0: expected FEDRAT/ f (mm/min)");
+  return rate * unit;
+}
+
+// A statement topomill does not follow: refused. Named only when it is APT's own word: a file that
+// is no CL data at all (a scene may name any file) keeps its first line to itself.
+[[noreturn]] void refuse_word(const std::string& w, int column, int line) {
+  static const std::vector<std::string> apt_words{
+      "CIRCLE", "GOFWD",  "GOLFT", "GORGT", "GOBACK", "GOUP",  "GODOWN", "GODLTA", "INDIRV",
+      "INDIRP", "CUTCOM", "CYCLE", "PSIS",  "DNTCUT", "THICK", "ARCSLP", "PIVOTZ", "ROTABL"};
+  const bool known = std::find(apt_words.begin(), apt_words.end(), w) != apt_words.end();
+  throw ReadError(line, column,
+                  (known ? w + " is" : std::string("this is")) +
+                      " not a statement topomill follows: expected GOTO, FROM, FEDRAT, "
+                      "RAPID, UNITS, TLAXIS, END-OF-PATH, FINI, END (motion in straight "
+                      "lines), or one that does not move the tool (PARTNO, CUTTER, SPINDL, "
+                      "COOLNT, ...); circles (CIRCLE, GOFWD) and cutter compensation are not "
+                      "followed");
+}
+
 // APT statements: a line, or lines joined where one ends in '$' (a continuation); "$$" starts a
 // comment. Each character keeps its column, for messages (on the first line of the statement).
 Data read_apt(const std::string& text) {
@@ -222,20 +256,7 @@ Data read_apt(const std::string& text) {
       if (rapid || w == "FROM") passes.end(), rapid = false;
       passes.add(p);
     } else if (w == "FEDRAT") {
-      double rate = NAN, unit = 1;
-      for (const Field& a : args) {
-        const std::string u = upper(a.text);
-        if (u == "MMPM")
-          unit = 1;
-        else if (u == "IPM")
-          unit = 25.4;
-        else
-          rate = number(a, line, "the feed rate (or MMPM, IPM)");
-      }
-      if (!(rate > 0))
-        throw ReadError(line, args.empty() ? 1 : args[0].column,
-                        "FEDRAT without a rate above 0: expected FEDRAT/ f (mm/min)");
-      feed = rate * unit;
+      feed = feed_rate(args, line);
     } else if (w == "RAPID") {
       rapid = true;
     } else if (w == "UNITS") {
@@ -256,19 +277,7 @@ Data read_apt(const std::string& text) {
     } else if (w == "END-OF-PATH" || w == "FINI" || w == "END") {
       passes.end();
     } else if (std::find(ignored.begin(), ignored.end(), w) == ignored.end()) {
-      // Named only when it is APT's own word: a file that is no CL data at all (a scene may name
-      // any file) keeps its first line to itself.
-      static const std::vector<std::string> apt_words{
-          "CIRCLE", "GOFWD",  "GOLFT", "GORGT", "GOBACK", "GOUP",  "GODOWN", "GODLTA", "INDIRV",
-          "INDIRP", "CUTCOM", "CYCLE", "PSIS",  "DNTCUT", "THICK", "ARCSLP", "PIVOTZ", "ROTABL"};
-      const bool known = std::find(apt_words.begin(), apt_words.end(), w) != apt_words.end();
-      throw ReadError(line, word.column,
-                      (known ? w + " is" : std::string("this is")) +
-                          " not a statement topomill follows: expected GOTO, FROM, FEDRAT, "
-                          "RAPID, UNITS, TLAXIS, END-OF-PATH, FINI, END (motion in straight "
-                          "lines), or one that does not move the tool (PARTNO, CUTTER, SPINDL, "
-                          "COOLNT, ...); circles (CIRCLE, GOFWD) and cutter compensation are not "
-                          "followed");
+      refuse_word(w, word.column, line);
     }
   };
   bool open = false;  // the statement continues on the next line
