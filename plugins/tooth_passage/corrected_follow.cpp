@@ -127,7 +127,7 @@ double CorrectedFollow::revisit(double best, bool& solved) {
       // monotone there): else the pass is walked again.
       if (!solve_root(geo_, tooth, &r, 0.0, again, q) ||
           std::abs(again.t - r.t) > kSamePassage * rev ||
-          !geo_.monotone(again.t - rev, again.t + rev))
+          !geo_.monotony({again.t - rev, again.t + rev}).monotone)
         return NAN;
       r = again, solved = true;
       first = std::min(first, r.t), last = std::max(last, r.t);

@@ -70,14 +70,13 @@ inline void IdealFollow::exact(int tooth, double lo, double hi) {
 
 inline bool IdealFollow::prove_edge(int side) {
   const double edge = zone_[side], far = edge + (side ? kAhead : -kAhead) * rev_;
-  beyond_edge_[side] = geo_.span(std::min(edge, far), std::max(edge, far));
-  return edge_proven_[side] = beyond_edge_[side].monotone(w_);
+  beyond_edge_[side] = geo_.monotony({edge, far});
+  return edge_proven_[side] = beyond_edge_[side].monotone;
 }
 
 inline void IdealFollow::solve_zone() {
   const double t_b = t_b_, rev = rev_;
-  if (geo_.monotone_around(t_b, 0.8 * rev) || geo_.monotone(t_b - 0.8 * rev, t_b + 0.8 * rev))
-    return;
+  if (geo_.monotony(geo_.around(t_b, 0.8 * rev)).monotone) return;
   // Each edge as near t_b as the phase is proven monotone beyond it, by eighths of a revolution
   // (the axis's closest approach holds the turn-backs, so a whole revolution solved exactly is
   // mostly pieces far from it); from half a revolution out, by whole ones (below).
@@ -198,17 +197,14 @@ inline bool IdealFollow::step(int tooth, int dir, Cursor& c) {
   if (dir > 0 ? c.t > t_hi_ + rev_ / 2 : c.t < t_lo_ - rev_ / 2) return false;
   if (ends_before_next(dir, c)) return false;
   const double far = c.t + dir * kAhead * rev_;
-  // Where the phase is monotone all along (most nodes), no span is asked: the step's turn is read
-  // exactly from its probes (proven_next).
-  const bool easy = c.at_root && geo_.monotone_from(c.rho, kAhead * rev_);
-  PassageGeometry::Span ahead{};
-  if (!easy) {
-    const int side = dir > 0;
-    ahead = !c.at_root && zone_[1] > zone_[0] && c.t == zone_[side] && edge_proven_[side]
-                ? beyond_edge_[side]
-                : geo_.span(std::min(c.t, far), std::max(c.t, far));
-    if (!ahead.monotone(w_)) return solve_revolution(tooth, dir, c), true;
-  }
+  // Where the phase is monotone all along by the root's distance from the axis (most nodes), no
+  // span is asked: the step's turn is read exactly from its probes (proven_next).
+  const int side = dir > 0;
+  const PassageGeometry::Monotony ahead =
+      !c.at_root && zone_[1] > zone_[0] && c.t == zone_[side] && edge_proven_[side]
+          ? beyond_edge_[side]
+          : geo_.monotony({c.t, far, c.at_root ? c.rho : NAN, kAhead * rev_});
+  if (!ahead.monotone) return solve_revolution(tooth, dir, c), true;
   double guess = c.t + dir * rev_, gap = 0;
   if (c.at_root) {
     // From a root: a turn at the phase's rate there (Newton's last slope), where that is within a
@@ -219,14 +215,13 @@ inline bool IdealFollow::step(int tooth, int dir, Cursor& c) {
     if (r > 0.5 * w_ && r < 2 * w_) guess = c.t + dir * kTwoPi / r;
   } else {
     // From an edge: the next crossing is where the phase has turned on to its next zero.
-    const int side = dir > 0;
     c.q = c.t == edge_probe_at_[side] ? geo_.turned_to(edge_probe_[side], tooth)
                                       : geo_.probe(tooth, c.t);
     gap = dir * s_.omega > 0 ? -c.q.g : c.q.g;
     gap -= kTwoPi * std::floor(gap / kTwoPi);  // the turn still to go, in [0, 2 pi)
     // That turn takes at least gap / top (the span just proven monotone bounds the rate): where
     // the envelope is already too high there, no crossing beyond the edge can lower the node.
-    if (ends_at(dir, c.t + dir * gap / ahead.top(w_))) return false;
+    if (ends_at(dir, c.t + dir * gap / ahead.top)) return false;
     guess = c.t + dir * gap / w_;
   }
   // From a root that was the last node's too, the next is where the last node's next was (where
@@ -242,7 +237,7 @@ inline bool IdealFollow::step(int tooth, int dir, Cursor& c) {
   }
   Probe q{};
   const double t = solve(tooth, guess, kSamePassage * rev_, q, c.from, hint);
-  if (!proven_next(geo_, tooth, dir, c, t, q, easy, ahead, gap))
+  if (!proven_next(geo_, tooth, dir, c, t, q, ahead, gap))
     return solve_revolution(tooth, dir, c), true;
   c.t = t, c.at_root = true, c.rho = q.rho, c.q = q, c.rate = scratch_.fresh.back().slope;
   c.rise.add(take(tooth, t, &q));
@@ -258,9 +253,9 @@ inline bool IdealFollow::step(int tooth, int dir, Cursor& c) {
 // (advance); where t lies beyond `far` (the phase slowed: near the axis, on the side where the
 // node's azimuth turns against the spindle), a second span from `far` to t must be monotone too.
 bool IdealFollow::proven_next(const PassageGeometry& geo, int tooth, int dir, const Cursor& c,
-                              double t, const Probe& q, bool easy,
-                              const PassageGeometry::Span& ahead, double gap) {
-  const double rev = geo.setup().rev, w = std::abs(geo.setup().omega);
+                              double t, const Probe& q, const PassageGeometry::Monotony& ahead,
+                              double gap) {
+  const double rev = geo.setup().rev;
   if (std::isnan(t)) return false;
   const double moved = dir * (t - c.t), need = c.at_root ? kTwoPi : gap;
   if (!c.at_root && moved < 0) return true;  // behind the edge: the exact solve has it already
@@ -268,13 +263,13 @@ bool IdealFollow::proven_next(const PassageGeometry& geo, int tooth, int dir, co
   if (moved <= kAhead * rev)
     // (Less by a margin: where the bound is tight, G' = omega on a pass's line, a solve that went
     // one turn too far has top * moved = need + 2 pi but for round-off.)
-    return (!easy && ahead.top(w) * moved < need + kTwoPi - 1e-6) ||
-           geo.turned(need, c.t, c.q, t, q);
+    return ahead.top * moved < need + kTwoPi - 1e-6 || geo.turned(need, c.t, c.q, t, q);
   const double far = c.t + dir * kAhead * rev;
-  if (!((c.at_root && geo.monotone_from(c.rho, moved)) || geo.monotone(far, t))) return false;
+  const PassageGeometry::Monotony beyond = geo.monotony({far, t, c.at_root ? c.rho : NAN, moved});
+  if (!beyond.monotone) return false;
   // (Where the centre keeps to a strip that leaves the node out, the turn over the whole step is
   // exact at once: no probe at `far`.)
-  if (geo.off_strip()) return geo.turned(need, c.t, c.q, t, q);
+  if (beyond.any_turn_exact) return geo.turned(need, c.t, c.q, t, q);
   const Probe q_far = geo.probe(tooth, far);
   return geo.turned(need, c.t, c.q, far, q_far, t, q);
 }

@@ -52,11 +52,10 @@ class IdealFollow {
   };
   // The step proof: whether t (probe q there) is proven the crossing of `tooth` right after c's
   // in direction dir (after an edge: the first beyond it, the phase still to turn by `gap`).
-  // `easy`: the phase is known monotone over 1.1 revolutions from c by its distance from the axis
-  // (PassageGeometry::monotone_from); else `ahead` is a span over them, proven monotone.
+  // `ahead`: the phase proven monotone over 1.1 revolutions from c (by c's distance from the
+  // axis, or by a span that bounds its rate: PassageGeometry::monotony).
   static bool proven_next(const PassageGeometry& geo, int tooth, int dir, const Cursor& c, double t,
-                          const Probe& q, bool easy, const PassageGeometry::Span& ahead,
-                          double gap);
+                          const Probe& q, const PassageGeometry::Monotony& ahead, double gap);
   // How far a step looks ahead, in revolutions: a whole one and room for the phase's rate to vary.
   static constexpr double kAhead = 1.1;
 
@@ -109,7 +108,7 @@ class IdealFollow {
   double edge_probe_at_[2] = {NAN, NAN};
   // The span over 1.1 revolutions beyond each edge, where proven monotone there: the first step
   // of every tooth's walk from that edge needs no other.
-  PassageGeometry::Span beyond_edge_[2];  // (read only where edge_proven_)
+  PassageGeometry::Monotony beyond_edge_[2];  // (read only where edge_proven_)
   bool edge_proven_[2] = {false, false};
 };
 

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <vector>
 
+#include "monotony.hpp"
 #include "passage_setup.hpp"
 #include "phase_span.hpp"
 #include "probe.hpp"
@@ -280,31 +281,40 @@ class PassageGeometry {
   // the side of t asked for (sample's is the right: a piece ending at a knot asks for the left).
   // `lag_rate`, where given, gets the lag's part of it.
   double rate(const Sample& at, const Vec3& dv, double* lag_rate = nullptr) const;
-  // Whether the phase is monotone (G' > 0 in the spindle's sense) over `duration` from (or to) a
-  // time when the node is `rho` from the axis, for a reason that holds all along the window. Far
-  // from the line G' stays within (0, 2 omega): a vertical tool, the node farther from the
-  // window's line than S v / omega (PlanLine; S from the lag's slope over the ball to 0.95 R:
-  // gap_lag), and within 0.95 R of the axis all that time (it moves away at most at the centre's
-  // top speed v). Then a step's turn is also exact from its
-  // probes (advance: the centre keeps to the line's strip, a convex region that leaves the node
-  // out), and no span need be asked: most nodes of every scene, all but those within about
-  // v / omega of a pass's line.
-  // Closer to the line, on a pass that keeps to it (PlanLine::along_lo), the side the node lies
-  // on settles it (line_rates): where the node's azimuth turns with the spindle the phase is
-  // monotone from a few micrometres out (the paper's loxodrome at its feed: 3.3 um), and there G'
-  // may exceed 2 omega: no caller needs that bound, only the sign and advance's exactness.
-  bool monotone_from(double rho, double duration) const {
-    const double v = s_.window[win_].plan_line.speed, out = rho + v * duration;
-    if (out > kRimFraction * s_.R) return false;
-    return far_from_line() || clears_line(out) ||
-           (lined() && kRoom * line_rates(out).first < std::abs(s_.omega));
+  using Stretch = PhaseStretch;
+  using Monotony = PhaseMonotony;
+  // The stretch `reach` either side of t, with the node's distance at t read from the table where
+  // the window can use it (a vertical tool on a fixed frame).
+  Stretch around(double t, double reach) const {
+    if (tilted_ || turning_) return {t - reach, t + reach};  // (the distance never helps there)
+    const Vec3 c = table_(t);
+    return {t - reach, t + reach, norm(x_ - c.x(), y_ - c.y()), reach};
+  }
+  // What the bounds prove of the phase over a stretch: every follow's one question before it
+  // steps, ends a walk or trusts a turn. Answered first by a reason that holds all along the
+  // window, from the node's distance (no span): far from the line G' stays within (0, 2 omega): a
+  // vertical tool, the node farther from the window's line than S v / omega (PlanLine; S from the
+  // lag's slope over the ball to 0.95 R: gap_lag, or out to as far as the node gets: clearance),
+  // and within 0.95 R of the axis all along (it moves away at most at the centre's top speed v);
+  // most nodes of every scene, all but those within about v / omega of a pass's line. Closer to the
+  // line, on a pass that keeps to it (PlanLine::along_lo), the side the node lies on settles it
+  // (line_rates): where the node's azimuth turns with the spindle the phase is monotone from a few
+  // micrometres out (the paper's loxodrome at its feed: 3.3 um), and there G' may exceed 2 omega.
+  // Else by the span over the stretch.
+  Monotony monotony(const Stretch& s) const {
+    Monotony m;
+    m.any_turn_exact = !tilted_ && !turning_ && line_gap_ > 0;
+    if (!std::isnan(s.rho) && monotone_by_distance(s.rho, s.reach)) {
+      m.monotone = true;
+      return m;
+    }
+    const double w = std::abs(s_.omega);
+    const Span sp = span(std::min(s.a, s.b), std::max(s.a, s.b));
+    m.monotone = sp.sense(w) > 0, m.top = sp.top(w);
+    return m;
   }
   // Whether line_rates can know anything here: a window that keeps to its line, the node off it.
   bool lined() const { return s_.window[win_].plan_line.along_lo > 0 && line_gap_ > 0; }
-  // Whether the node lies outside the strip its window's centre keeps to (PlanLine), for a
-  // vertical tool on a fixed frame: then the centre stays in a convex region that leaves the node
-  // out, and advance() is exact between any two times of the window's table.
-  bool off_strip() const { return !tilted_ && !turning_ && line_gap_ > 0; }
   // The phase's rate on a window whose centre keeps to its line (PlanLine::along_lo > 0), at every
   // time the node is within `out` of the axis, from the side of the line the node lies on:
   // within [w - fall, w + rise] in the spindle's sense, returned as (fall, rise); infinite where
@@ -321,25 +331,10 @@ class PassageGeometry {
   // How soon after a crossing `rho` from the axis the same tooth can cross again by line_rates
   // (a whole turn at the top rate, the phase monotone), up to `cap`; 0 where that is not known.
   double line_gap(double rho, double cap) const;
-  // Nearer the line: the same with the lag's slope only as far out as the node gets, `out` from
-  // the axis (gap_lag takes it to 0.95 R, where a loxodrome's is twice its tip's), as next_gap
-  // does.
-  bool clears_line(double out) const;
   // How far from the axis the moving point (moving at most at `speed`) must stay for
   // |G' - omega| < omega / 1.01 while it is within `out` of the axis: S v / omega, S from the
   // lag's slope out to there (LagShape::slope_to).
   double clearance(double out, double speed) const;
-  // The same within `duration` either side of t.
-  bool monotone_around(double t, double duration) const;
-  // Whether the phase is certainly monotone on [a, b] by the crude bound alone.
-  bool monotone(double a, double b) const {
-    return span(std::min(a, b), std::max(a, b)).monotone(std::abs(s_.omega));
-  }
-  // Whether the phase is monotone on [lo, hi] and turns by exactly `turn` there, given that it
-  // turns by `turn` plus a whole number of turns (the phases at both ends tell): proven on four
-  // equal parts, by the bounds (less than one more turn) or, where they are too loose, exactly
-  // (advance).
-  bool turns_by(double lo, double hi, double turn) const;
   // How soon after (dir > 0) or before (dir < 0) a crossing at t, rho from the axis, the same
   // tooth can cross again: half a revolution where the phase's rate stays within (0, 2 omega)
   // there (PassageSetup::gap_rho; or where the axis stays far enough from the node over that
@@ -454,12 +449,29 @@ class PassageGeometry {
                ? static_cast<double>(s_.path->correction_samples(src_).values.size() - 1) * step
                : -INFINITY;
   }
-  // monotone_from's conditions other than the distance from the axis: a vertical tool, the node
+  // monotony's conditions other than the distance from the axis: a vertical tool, the node
   // farther from the window's line than S v / omega. next_gap settles most nodes by it too.
   bool far_from_line() const {
     return !tilted_ && !turning_ &&
            line_gap_ >= kRoom * s_.gap_lag * s_.window[win_].plan_line.speed / std::abs(s_.omega);
   }
+  // Whether the phase is monotone over `reach` from (or to) a time when the node is `rho` from
+  // the axis, by the reasons that hold all along the window (monotony).
+  bool monotone_by_distance(double rho, double reach) const {
+    const double v = s_.window[win_].plan_line.speed, out = rho + v * reach;
+    if (out > kRimFraction * s_.R) return false;
+    return far_from_line() || clears_line(out) ||
+           (lined() && kRoom * line_rates(out).first < std::abs(s_.omega));
+  }
+  // Nearer the line: far_from_line with the lag's slope only as far out as the node gets, `out`
+  // from the axis (gap_lag takes it to 0.95 R, where a loxodrome's is twice its tip's), as next_gap
+  // does.
+  bool clears_line(double out) const;
+  // Whether the phase is monotone on [lo, hi] and turns by exactly `turn` there, given that it
+  // turns by `turn` plus a whole number of turns (the phases at both ends tell): proven on four
+  // equal parts, by the bounds (less than one more turn) or, where they are too loose, exactly
+  // (advance).
+  bool turns_by(double lo, double hi, double turn) const;
   // Where on the chord from a to b (0 to 1, in plan) the node's foot lies.
   double nearest_on_chord(const Vec3& a, const Vec3& b) const {
     const double ux = b.x() - a.x(), uy = b.y() - a.y(), len2 = ux * ux + uy * uy;

@@ -219,7 +219,7 @@ bool PassageGeometry::turns_by(double lo, double hi, double turn) const {
   for (int i = 0; i < 4; ++i) {
     at[i + 1] = sample(i == 3 ? hi : lo + (i + 1) * h);
     const Span part = span(at[i], at[i + 1]);
-    if (!part.monotone(w)) return false;
+    if (part.sense(w) <= 0) return false;
     bound += part.top(w) * h;
   }
   if (bound < turn + kTwoPi) return true;
@@ -260,12 +260,6 @@ double PassageGeometry::line_gap(double rho, double cap) const {
   return fall < w ? std::min(cap, kTwoPi / (w + rise)) : 0.0;
 }
 
-bool PassageGeometry::monotone_around(double t, double duration) const {
-  if (tilted_ || turning_) return false;  // (before reading the table: it never holds then)
-  const Vec3 c = table_(t);
-  return monotone_from(norm(x_ - c.x(), y_ - c.y()), duration);
-}
-
 double PassageGeometry::next_gap(double t, double rho, double dir) const {
   const double half = 0.5 * s_.rev, w = std::abs(s_.omega);
   if (tilted_) {
@@ -300,8 +294,8 @@ double PassageGeometry::next_gap(double t, double rho, double dir) const {
   // On a pass that keeps to its line, by the side the node lies on (no table: near the axis most
   // walks end here); the gap may then exceed half a revolution.
   if (const double line = lined() ? line_gap(rho, 1.1 * s_.rev) : 0.0; line > 0) return line;
-  const Span sp = span(std::min(t, t + dir * half), std::max(t, t + dir * half));
-  return sp.monotone(w) ? std::min(half, kTwoPi / sp.top(w)) : 0.0;
+  const Monotony m = monotony({t, t + dir * half});
+  return m.monotone ? std::min(half, kTwoPi / m.top) : 0.0;
 }
 
 }  // namespace topomill::plugins

@@ -136,7 +136,7 @@ inline bool PassageGeometry::Halving::settle(Piece& p) {
   if (sp.rho_lo > geo.rho_hi_ || sp.rho_hi < geo.rho_lo_ || above(floor_of(p, sp))) return true;
   // Monotone: turn < |omega|, or G' of one sign at both ends with room for the curvature (G' is
   // then at least half their sum less the curvature's fall between).
-  bool mono = sp.monotone(w) || sp.falls(w);
+  bool mono = sp.sense(w) != 0;
   if (!mono && std::isfinite(sp.curve)) {
     const double ra = rate_of(p.lo, p.lo.at.dv), rb = rate_of(p.hi, p.lo.at.dv);
     mono = (ra > 0) == (rb > 0) && 0.5 * (std::abs(ra) + std::abs(rb) - sp.curve * h) > 0;

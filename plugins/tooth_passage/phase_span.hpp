@@ -29,11 +29,15 @@ struct PhaseSpan {
   // with the nominal centre's lowest, the ball's floor there (crossings_in asks for it only
   // where the piece's phase can reach a crossing). NaN when not read.
   double box_z_lo = NAN;
-  bool monotone(double w) const { return fall < w && jump == 0; }
-  // Whether G turns against the spindle all along (G' <= w + rise < 0): where the axis passes
-  // close on the side where the node's azimuth turns against the spindle faster than it, G
-  // falls by about pi (and crosses a level between three times).
-  bool falls(double w) const { return w + rise < 0 && jump == 0; }
+  // The sense G keeps all along by these bounds: +1 with the spindle (G' >= w - fall > 0), -1
+  // against it (G' <= w + rise < 0: where the axis passes close on the side where the node's
+  // azimuth turns against the spindle faster than it, G falls by about pi and crosses a level
+  // between three times), 0 where either may hold.
+  int sense(double w) const {
+    if (jump != 0) return 0;
+    if (fall < w) return 1;
+    return w + rise < 0 ? -1 : 0;
+  }
   double top(double w) const { return std::max(w + rise, fall - w); }  // |G'| <= top
   // |G(b) - G(a)| over a piece of length h = b - a.
   double turn(double w, double h) const { return std::min(top(w) * h, w * h + sweep) + jump; }

@@ -77,7 +77,7 @@ TEST_CASE("the ideal follow's step proof never passes over a crossing",
   const topomill::Prepared m = testing::paper_patch(c.workpiece, "", c.overrides);
   const tp::PassageSetup s = testing::passage_setup(m);
   const std::size_t p = testing::nearest_pass(s);
-  const double w = std::abs(s.omega), ahead = IdealFollow::kAhead * s.rev;
+  const double ahead = IdealFollow::kAhead * s.rev;
   int tried = 0, proven = 0;
   for (const double d :
        {-0.05, -0.02, -0.01, -0.005, -0.002, -0.001, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05}) {
@@ -97,18 +97,13 @@ TEST_CASE("the ideal follow's step proof never passes over a crossing",
           const double t = roots[i];
           const tp::Probe q0 = geo.probe(tooth, t);
           IdealFollow::Cursor cur{t, true, q0.rho, q0, 0.0, nullptr, {}};
-          const bool easy = geo.monotone_from(q0.rho, ahead);
-          PassageGeometry::Span span{};
-          if (!easy) {
-            span = geo.span(std::min(t, t + dir * ahead), std::max(t, t + dir * ahead));
-            if (!span.monotone(w)) continue;  // the follow solves this revolution exactly
-          }
+          const PassageGeometry::Monotony mono = geo.monotony({t, t + dir * ahead, q0.rho, ahead});
+          if (!mono.monotone) continue;  // the follow solves this revolution exactly
           ++tried;
           const double t1 = roots[i1], t2 = roots[i2];
-          CHECK_FALSE(IdealFollow::proven_next(geo, tooth, dir, cur, t2, geo.probe(tooth, t2), easy,
-                                               span, 0.0));
-          if (IdealFollow::proven_next(geo, tooth, dir, cur, t1, geo.probe(tooth, t1), easy, span,
-                                       0.0))
+          CHECK_FALSE(
+              IdealFollow::proven_next(geo, tooth, dir, cur, t2, geo.probe(tooth, t2), mono, 0.0));
+          if (IdealFollow::proven_next(geo, tooth, dir, cur, t1, geo.probe(tooth, t1), mono, 0.0))
             ++proven;
         }
     }

@@ -75,7 +75,7 @@ TEST_CASE("lag shape: the slope bound over any range of distances holds the lag'
       CHECK(shape.variation(lo, hi) >= turn * (1 - 1e-6));
       // The bins' samples widened by 10 %, over at most one more bin at each end (R / 4096):
       // within a fifth of the slope a little beyond the range. The bound is the largest from
-      // the axis out to hi (what slope_to gives, and monotone_from and next_gap ask), sampled
+      // the axis out to hi (what slope_to gives, and monotony and next_gap ask), sampled
       // from a micrometre out (below it the three edges' slopes are held, constant or
       // vanishing): for the built-in edges, whose slope grows outwards, that is the range's own.
       double wide = 0, unused = 0, from_axis = 0;
