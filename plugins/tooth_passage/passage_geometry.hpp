@@ -301,17 +301,11 @@ class PassageGeometry {
   // (line_rates): where the node's azimuth turns with the spindle the phase is monotone from a few
   // micrometres out (the paper's loxodrome at its feed: 3.3 um), and there G' may exceed 2 omega.
   // Else by the span over the stretch.
+  // (The distance's answer inline: most steps end there.)
   Monotony monotony(const Stretch& s) const {
-    Monotony m;
-    m.any_turn_exact = !tilted_ && !turning_ && line_gap_ > 0;
-    if (!std::isnan(s.rho) && monotone_by_distance(s.rho, s.reach)) {
-      m.monotone = true;
-      return m;
-    }
-    const double w = std::abs(s_.omega);
-    const Span sp = span(std::min(s.a, s.b), std::max(s.a, s.b));
-    m.monotone = sp.sense(w) > 0, m.top = sp.top(w);
-    return m;
+    if (!std::isnan(s.rho) && monotone_by_distance(s.rho, s.reach))
+      return {true, INFINITY, any_turn_exact()};
+    return monotony_by_span(s);
   }
   // Whether line_rates can know anything here: a window that keeps to its line, the node off it.
   bool lined() const { return s_.window[win_].plan_line.along_lo > 0 && line_gap_ > 0; }
@@ -463,6 +457,10 @@ class PassageGeometry {
     return far_from_line() || clears_line(out) ||
            (lined() && kRoom * line_rates(out).first < std::abs(s_.omega));
   }
+  // monotony's answer from the span over the stretch.
+  Monotony monotony_by_span(const Stretch& s) const;
+  // Monotony::any_turn_exact.
+  bool any_turn_exact() const { return !tilted_ && !turning_ && line_gap_ > 0; }
   // Nearer the line: far_from_line with the lag's slope only as far out as the node gets, `out`
   // from the axis (gap_lag takes it to 0.95 R, where a loxodrome's is twice its tip's), as next_gap
   // does.

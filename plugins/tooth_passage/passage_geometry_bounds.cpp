@@ -260,6 +260,12 @@ double PassageGeometry::line_gap(double rho, double cap) const {
   return fall < w ? std::min(cap, kTwoPi / (w + rise)) : 0.0;
 }
 
+PassageGeometry::Monotony PassageGeometry::monotony_by_span(const Stretch& s) const {
+  const double w = std::abs(s_.omega);
+  const Span sp = span(std::min(s.a, s.b), std::max(s.a, s.b));
+  return {sp.sense(w) > 0, sp.top(w), any_turn_exact()};
+}
+
 double PassageGeometry::next_gap(double t, double rho, double dir) const {
   const double half = 0.5 * s_.rev, w = std::abs(s_.omega);
   if (tilted_) {
