@@ -73,7 +73,9 @@ struct PassageGeometry::LinedZone {
   const double sense, k2;  // the spindle's sense; the lag's bend as the convexity bound took it
   const std::vector<Hint>* hints;
 
-  bool eval(double t, Eval& e) const {
+  // (Out of line: it has five call sites, which inlined would spread the zone over more of the
+  // instruction cache than its work needs.)
+  [[gnu::noinline]] bool eval(double t, Eval& e) const {
     const PassageSetup& s = geo.s_;
     Vec3 c, v, acc;
     if (!geo.table_.nominal_jet(t, c, v, acc)) return false;
