@@ -4,9 +4,11 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 #include "spawn.hpp"
 
@@ -21,8 +23,27 @@ std::string fixture_dir(const std::string& name) {
   return std::string(TOPOMILL_FIXTURE_DIR) + "/" + name;
 }
 
+namespace {
+// This process's folder under the system's temporary one, removed when the process ends: ctest
+// runs each test case as a process of its own, and their folders would otherwise pile up.
+// (Children are started by posix_spawn, never forked, so no child runs this destructor.) Set
+// TOPOMILL_KEEP_TEST_FILES to keep it, to look into a failure's files.
+struct ProcessFolder {
+  fs::path path = fs::temp_directory_path() / ("topomill_test_" + std::to_string(getpid()));
+  ProcessFolder() = default;
+  ProcessFolder(const ProcessFolder&) = delete;
+  ProcessFolder& operator=(const ProcessFolder&) = delete;
+  ~ProcessFolder() {
+    if (std::getenv("TOPOMILL_KEEP_TEST_FILES")) return;
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+}  // namespace
+
 std::string temp_dir(const std::string& name) {
-  fs::path p = fs::temp_directory_path() / ("topomill_test_" + std::to_string(getpid())) / name;
+  static const ProcessFolder folder;
+  fs::path p = folder.path / name;
   fs::remove_all(p);
   fs::create_directories(p.parent_path());
   return p.string();
