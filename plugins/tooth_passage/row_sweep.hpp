@@ -22,7 +22,9 @@ class RowSweep {
  public:
   explicit RowSweep(const PassageSetup& s);
   // Lowers z[i] (the nodes x[i] of the row at y, in order) wherever an edge passes below.
-  void row(double y, const std::vector<double>& x, double* z, NodeCounts& counts);
+  // (A call of its own, never inlined: scripts/bench and bench-pair count a row's instructions
+  // from its entry.)
+  [[gnu::noinline]] void row(double y, const std::vector<double>& x, double* z, NodeCounts& counts);
 
  private:
   // What the sweep keeps of one window along the row.
