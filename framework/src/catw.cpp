@@ -11,6 +11,7 @@ double catw_chord_depth(double R, double ap, double r) {
 }
 
 double catw_kappa(double R, double ap, double r) {
+  if (!(R > 0)) return M_PI / 2;  // a sharp corner: the whole corner, a point, may cut
   const double o1h3 = R - catw_chord_depth(R, ap, r);
   return std::acos(std::clamp(o1h3 / R, -1.0, 1.0));
 }

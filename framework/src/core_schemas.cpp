@@ -49,13 +49,26 @@ Schema runout_schema() {
       .with_unit("mm")
       .at_least(0)
       .at_most(1)
-      .is_required();
+      .with_default(0.0);
   s.add_number("angle",
                "Direction of the offset from tooth 1 (its azimuth where the lag is zero), in the "
                "spindle's sense of turning")
       .with_unit("deg")
       .at_least(-360)
       .at_most(360)
+      .with_default(0.0);
+  // Wang et al. (2023) give each insert's runout as steps from the first: eps_r, eps_a.
+  s.add_number("edge_radial_step",
+               "Per-edge runout eps_r: edge K (0-based) is K eps_r farther from the axis")
+      .with_unit("mm")
+      .at_least(-1)
+      .at_most(1)
+      .with_default(0.0);
+  s.add_number("edge_axial_step",
+               "Per-edge runout eps_a: edge K (0-based) is K eps_a higher (shallower)")
+      .with_unit("mm")
+      .at_least(-1)
+      .at_most(1)
       .with_default(0.0);
   return s;
 }

@@ -99,6 +99,7 @@ struct LayoutSteps {
         work(scene.slot("workpiece")),
         path_slot(scene.slot("path")),
         R(tool.radius()),
+        rim(tool.reach()),
         ap(cut.number("depth_of_cut")),
         ae(cut.number("stepover")),
         fz(cut.number("feed_per_tooth")),
@@ -128,7 +129,9 @@ struct LayoutSteps {
   const PathModel& path_model;
   const Params &cut, &region;
   const SlotTable &work, &path_slot;
-  const double R, ap, ae, fz, rpm, h, r;
+  // R: the tube's radius (the ball's); rim: how far the edges reach from the axis (R for a ball,
+  // D/2 for an end mill).
+  const double R, rim, ap, ae, fz, rpm, h, r;
   const std::vector<double>& size;
   const int teeth;
   Layout L;
@@ -149,15 +152,17 @@ struct LayoutSteps {
 void LayoutSteps::check_cut() const {
   // The workpiece's radius is a key of its own plugin's table: point at it when it is there.
   const SourceRef radius_at = work.params.has("radius") ? work.params.where("radius") : work.where;
-  if (ap > R)
+  // An end mill's side edge may cut above its corner; a ball's or an insert's nothing may.
+  if (ap > R && !tool.has_bottom())
     throw InputError(cut.where("depth_of_cut"), "cutting.depth_of_cut",
-                     "depth of cut " + format_number(ap) + " mm exceeds the ball radius " +
-                         format_number(R) + " mm: only the ball may cut");
-  if (r < 0 && -r <= R)
+                     "depth of cut " + format_number(ap) + " mm exceeds the " +
+                         (tool.ring() > 0 ? "insert" : "ball") + " radius " + format_number(R) +
+                         " mm: only the " + (tool.ring() > 0 ? "insert" : "ball") + " may cut");
+  if (r < 0 && -r <= rim)
     throw InputError(radius_at, "workpiece.radius",
                      "a concave radius of " + format_number(-r) +
-                         " mm is not larger than the ball radius " + format_number(R) +
-                         " mm: expected a radius above it (the ball cannot follow it without "
+                         " mm is not larger than the tool's radius " + format_number(rim) +
+                         " mm: expected a radius above it (the tool cannot follow it without "
                          "gouging)");
   if (r > 0 && ap >= r)
     throw InputError(cut.where("depth_of_cut"), "cutting.depth_of_cut",
@@ -270,6 +275,9 @@ void LayoutSteps::request_passes() {
   // once held 2 spacings, which moved the marks by twice the change of spacing).
   const Grid& g = L.grid;
   run = 3 * fz * teeth + ap + 2 * (y_lo - g.y0);
+  // A cutter with a ring leaves the final surface anywhere under its bottom or its ring: both its
+  // leading and its trailing side (an insert's back-cutting) pass a node, a rim apart.
+  if (tool.ring() > 0) run += rim;
   vf = fz * teeth * rpm / 60.0;
   omega = 2 * M_PI * rpm / 60.0 * (cut.string("spindle_direction") == "cw" ? -1.0 : 1.0);
   // The passes could be a step-over apart across the patch's width or along its arc.
@@ -302,7 +310,7 @@ std::vector<ToolPath::Pass> LayoutSteps::to_passes() {
   // there), and the path is only defined over the surface: that reach must lie on it too. (With
   // 49 teeth on the paper's arc it did not: the centre was NaN there and tooth_passage's table
   // halved its step until memory ran out.)
-  const FeedLimits feed_limits{vf * kMinFeedPerTooth / fz, vf * 2 * R / fz};
+  const FeedLimits feed_limits{vf * kMinFeedPerTooth / fz, vf * 2 * rim / fz};
   std::vector<ToolPath::Pass> passes;
   bool near_patch = false;  // some waypoint segment's box comes within R of the patch
   for (const PassLine& l : lines) {
@@ -313,8 +321,8 @@ std::vector<ToolPath::Pass> LayoutSteps::to_passes() {
         const Vec3 &a = l.points[k].at.centre, &b = l.points[k + 1].at.centre;
         near_patch =
             near_patch ||
-            (std::max(a.x(), b.x()) > rq.x_lo - R && std::min(a.x(), b.x()) < rq.x_hi + R &&
-             std::max(a.y(), b.y()) > y_lo - R && std::min(a.y(), b.y()) < y_hi + R);
+            (std::max(a.x(), b.x()) > rq.x_lo - rim && std::min(a.x(), b.x()) < rq.x_hi + rim &&
+             std::max(a.y(), b.y()) > y_lo - rim && std::min(a.y(), b.y()) < y_hi + rim);
       }
       continue;
     }
@@ -363,22 +371,24 @@ void LayoutSteps::make_path(std::vector<ToolPath::Pass> passes) {
 
   try {
     L.path = std::make_shared<ToolPath>(surface, R - ap, vf, omega, std::move(passes));
+    L.path->set_ring(tool.ring());
     if (scene.has_table("runout")) {
       const Params& runout = scene.table("runout");
       const double e = runout.number("offset");
-      if (e >= R)
+      if (e >= rim)
         throw InputError(runout.where("offset"), "runout.offset",
-                         "a runout of " + format_number(e) + " mm is not below the ball radius " +
-                             format_number(R) + " mm: expected a few micrometres");
+                         "a runout of " + format_number(e) + " mm is not below the tool's radius " +
+                             format_number(rim) + " mm: expected a few micrometres");
       // Measured from tooth 1's zero-lag azimuth, turning with the spindle (its sense).
       const double sense = omega < 0 ? -1.0 : 1.0;
-      L.path->set_runout({e, tool.tooth_angle(0) + sense * runout.number("angle") * kDeg});
+      L.path->set_runout({e, tool.tooth_angle(0) + sense * runout.number("angle") * kDeg,
+                          runout.number("edge_radial_step"), runout.number("edge_axial_step")});
     }
   } catch (const std::invalid_argument& e) {
     throw defect(std::string("laid out passes the core cannot follow: ") + e.what());
   }
-  if (!L.path->vertical()) check_posture(*L.path, L, path_slot);
-  check_waypoints(*L.path, lines, {rq.x_lo - R, rq.x_hi + R, y_lo - R, y_hi + R}, R, L);
+  if (!L.path->vertical()) check_posture(*L.path, tool, L, path_slot);
+  check_waypoints(*L.path, lines, {rq.x_lo - rim, rq.x_hi + rim, y_lo - rim, y_hi + rim}, tool, L);
 }
 
 }  // namespace

@@ -28,7 +28,8 @@ std::string format_count(double n) {
 // is the angle between the axis and the normal: fixed, it varies with the surface along the pass;
 // normal, it is constant. Either way it is largest at a pass's ends or its middle on the
 // surfaces here (their inclination is monotone in y), and the CATW margin stands for the rest.
-void check_posture(const ToolPath& path, Layout& L, const SlotTable& slot) {
+void check_posture(const ToolPath& path, const ToolGeometry& tool, Layout& L,
+                   const SlotTable& slot) {
   L.lambda_max = 0;  // the contact's polar angle about the axis, no longer the inclination
   for (std::size_t p = 0; p < path.passes(); ++p) {
     if (!path.pass(p).waypoints.empty()) continue;  // check_waypoints
@@ -36,7 +37,8 @@ void check_posture(const ToolPath& path, Layout& L, const SlotTable& slot) {
     for (double t : {0.0, 0.5 * t_end, t_end}) {
       const double angle = path.contact_angle(p, t);
       L.lambda_max = std::max(L.lambda_max, angle);
-      if (angle + L.kappa < M_PI / 2) continue;
+      // An end mill has a side edge above its corner: it may cut, and is meant to.
+      if (angle + L.kappa < M_PI / 2 || tool.has_bottom()) continue;
       const char* key = slot.params.has("tilt") && slot.params.number("tilt") != 0 ? "tilt"
                         : slot.params.has("lead")                                  ? "lead"
                                                                                    : nullptr;
@@ -74,7 +76,8 @@ void check_layout_memory(double steps, double ae, const Params& cut) {
 // path that never touches the part left a flat map: centres read as tips, passes above the
 // part).
 void check_waypoints(const ToolPath& path, const std::vector<PassLine>& lines, const Reach& reach,
-                     double R, Layout& L) {
+                     const ToolGeometry& tool, Layout& L) {
+  const double R = tool.radius();
   const SurfaceShape& surface = path.surface();
   double lowest = INFINITY;  // the least distance of a centre near the patch from the surface
   SourceRef lowest_at;
@@ -97,7 +100,8 @@ void check_waypoints(const ToolPath& path, const std::vector<PassLine>& lines, c
                              format_number(surface.y_max()) + " mm): expected points over it");
       const double above = surface.normal_residual(centre.y(), centre.z(), 0.0);
       if (reach.holds(centre) && above < lowest) lowest = above, lowest_at = at;
-      if (above <= 0)
+      // An end mill's side edge above its corner may cut: its centres may be below the surface.
+      if (above <= 0 && !tool.has_bottom())
         throw InputError(at, "path.file",
                          "the ball centre is " + format_number(-above) +
                              " mm below the workpiece surface (along its normal): the ball's "

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "layout.hpp"
+#include "topomill/tool_geometry.hpp"
 
 namespace topomill {
 
@@ -24,11 +25,12 @@ struct Reach {
 };
 
 // Refuses a posture whose tool axis leaves the cut outside the ball's lower half.
-void check_posture(const ToolPath& path, Layout& L, const SlotTable& slot);
+void check_posture(const ToolPath& path, const ToolGeometry& tool, Layout& L,
+                   const SlotTable& slot);
 // Refuses a patch whose passes alone would not fit in memory (`steps` step-overs across it).
 void check_layout_memory(double steps, double ae, const Params& cut);
 // Checks every point of cutter-location data (below); sets L.lambda_max from them.
 void check_waypoints(const ToolPath& path, const std::vector<PassLine>& lines, const Reach& reach,
-                     double R, Layout& L);
+                     const ToolGeometry& tool, Layout& L);
 
 }  // namespace topomill

@@ -141,7 +141,13 @@ Vec3 ToolPath::nominal_centre(std::size_t p, double t) const {
   const double y = surface_y(p, t);
   const double lambda = surface_->inclination(y);
   const double x = passes_[p].x + feed_speed_ * (passes_[p].dx * t);
-  Vec3 k{x, y + offset_ * std::sin(lambda), surface_->height(y) + offset_ * std::cos(lambda)};
+  const double sl = std::sin(lambda), cl = std::cos(lambda);
+  double off = offset_;
+  if (ring_ > 0) {
+    const Vec3 n(0.0, sl, cl);
+    off += ring_ * (passes_[p].posture.vertical() ? std::abs(sl) : n.cross(axis(p, t)).norm());
+  }
+  Vec3 k{x, y + off * sl, surface_->height(y) + off * cl};
   if (runout_.offset > 0) k += runout_offset(p, t);  // (none: not even a zero, so the bits stay)
   return k;
 }

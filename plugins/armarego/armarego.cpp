@@ -65,14 +65,18 @@ class Armarego : public ForceModel {
   // sample costs each tooth's rotation and the chip per element, no transcendental function.
   CuttingForce evaluate(const ToolGeometry& tool, const CutState& st) const override {
     const std::shared_ptr<const EdgeTable> table = edge_table(tool);
-    const double R = tool.radius(), h = table->step;
+    const double h = table->step, a0 = table->start;
     const double sense = st.spindle_rate >= 0 ? 1.0 : -1.0;
     const int teeth = tool.teeth();
     if (teeth > kMaxTeeth) throw std::runtime_error("armarego: more than 64 teeth");
-    double tooth_cos[kMaxTeeth], tooth_sin[kMaxTeeth];
+    Teeth tt;
     for (int j = 0; j < teeth; ++j) {
       const double angle = tool.tooth_angle(j) + st.spindle_angle;
-      tooth_cos[j] = std::cos(angle), tooth_sin[j] = std::sin(angle);
+      tt.cos[j] = std::cos(angle), tt.sin[j] = std::sin(angle);
+      // Per-edge runout: edge j is j steps out and up; the edge before it in the spindle's sense
+      // (j - 1 turning counter-clockwise) passed the same place its own number of steps out.
+      const int before = ((j - static_cast<int>(sense)) % teeth + teeth) % teeth;
+      tt.more[j] = j - before;
     }
     // Runout: the ball centre is e off the spindle axis towards psi (now) and psi minus a tooth's
     // turn (when the tooth before passed where this one is), so an element at azimuth phi
@@ -80,42 +84,33 @@ class Armarego : public ForceModel {
     // did, and sin(alpha) of that along its normal: the chip grows or shrinks by as much.
     const double psi = st.spindle_angle + st.runout_angle;
     const double psi_before = psi - sense * 2 * M_PI / teeth;
-    const double run_c = st.runout * (std::cos(psi) - std::cos(psi_before));
-    const double run_s = st.runout * (std::sin(psi) - std::sin(psi_before));
-    const double lo = std::max(0.0, st.alpha_min), hi = std::min(M_PI / 2, st.alpha_max);
-    CuttingForce out;
-    if (!(hi > lo)) return out;
-    const auto first = static_cast<std::size_t>(std::floor(lo / h));
-    const auto last = std::min(table->elements.size(), static_cast<std::size_t>(std::ceil(hi / h)));
-    double weight = 0, moment = 0;
-    for (std::size_t e = first; e < last; ++e) {
+    tt.run_c = st.runout * (std::cos(psi) - std::cos(psi_before));
+    tt.run_s = st.runout * (std::sin(psi) - std::sin(psi_before));
+    const double lo = std::max(a0, st.alpha_min), hi = std::min(M_PI / 2, st.alpha_max);
+    Sum sum;
+    const auto first = static_cast<std::size_t>(std::max(0.0, std::floor((lo - a0) / h)));
+    const auto last =
+        std::min(table->elements.size(), static_cast<std::size_t>(std::ceil((hi - a0) / h)));
+    for (std::size_t e = first; hi > lo && e < last; ++e) {
       // An element the CATW's end cuts counts for its part inside, taken at that part's middle
       // (the midpoint rule on the clipped element: second order in the element size).
-      const double a = static_cast<double>(e) * h, a_lo = std::max(a, lo),
+      const double a = a0 + static_cast<double>(e) * h, a_lo = std::max(a, lo),
                    a_hi = std::min(a + h, hi);
       if (!(a_hi > a_lo)) continue;
       const bool whole = a_lo == a && a_hi == a + h;
       const Element el = whole ? table->elements[e] : element(tool, 0.5 * (a_lo + a_hi));
-      const double db = R * (a_hi - a_lo), ds = db * el.stretch;
-      for (int j = 0; j < teeth; ++j) {
-        const double cp = tooth_cos[j] * el.cl - tooth_sin[j] * el.sl;
-        const double sp = tooth_sin[j] * el.cl + tooth_cos[j] * el.sl;
-        const Vec3 n(el.sa * cp, el.sa * sp, -el.ca), m(el.ca * cp, el.ca * sp, el.sa),
-            v(-sense * sp, sense * cp, 0);
-        const double t =
-            st.feed_per_tooth * st.feed_direction.dot(n) + el.sa * (run_c * cp + run_s * sp);
-        if (t <= 0) continue;  // not in cut: the element faces away from the feed
-        if (st.in_material && !st.in_material(R * n)) continue;  // air: above or already cut
-        const double ft = kte_ * ds + ktc_ * t * db, fr = kre_ * ds + krc_ * t * db,
-                     fa = kae_ * ds + kac_ * t * db;
-        const Vec3 f = -ft * v - fr * n - fa * m;
-        out.force += f;
-        const double w = f.norm();
-        weight += w;
-        moment += w * R * (1 - el.ca);  // height of the element above the tip
-      }
+      add(tool, st, el, tool.radius() * (a_hi - a_lo), tt, sum);
     }
-    out.load_centre = weight > 0 ? moment / weight : 0.0;
+    // An end mill's side edge, where the depth of cut reaches above its corner.
+    const double side = st.depth_of_cut - tool.radius(), dz = h * tool.reach();
+    if (tool.has_bottom() && side > 0 && hi >= M_PI / 2)
+      for (double z0 = 0; z0 < side; z0 += dz) {
+        const double z1 = std::min(side, z0 + dz);
+        add(tool, st, side_element(tool, 0.5 * (z0 + z1)), z1 - z0, tt, sum);
+      }
+    CuttingForce out;
+    out.force = sum.force;
+    out.load_centre = sum.weight > 0 ? sum.moment / sum.weight : 0.0;
     return out;
   }
 
@@ -124,37 +119,95 @@ class Armarego : public ForceModel {
   struct Element {
     double sa, ca;   // sine and cosine of the polar angle at the element's middle
     double cl, sl;   // of the lag there (held below the tool's smallest polar angle)
-    double stretch;  // edge length per unit chip width: sqrt(1 + sin^2 a Psi'(a)^2)
+    double stretch;  // edge length per unit chip width: sqrt(1 + (rho Psi'(a) / r)^2)
+    // A side element's height above the tube's centre plane (sa = 1, ca = 0); -1 on the tube.
+    double up = -1;
   };
+  struct Teeth {
+    double cos[kMaxTeeth], sin[kMaxTeeth];
+    int more[kMaxTeeth];  // per-edge runout steps beyond the edge before
+    double run_c = 0, run_s = 0;
+  };
+  struct Sum {
+    Vec3 force = Vec3::Zero();
+    double weight = 0, moment = 0;
+  };
+
+  // One element's force on every tooth, added to `sum`; db is its chip width.
+  void add(const ToolGeometry& tool, const CutState& st, const Element& el, double db,
+           const Teeth& tt, Sum& sum) const {
+    const double R = tool.radius(), ring = tool.ring(), sense = st.spindle_rate >= 0 ? 1.0 : -1.0;
+    const double ds = db * el.stretch;
+    const bool per_edge = st.edge_radial != 0 || st.edge_axial != 0;
+    for (int j = 0; j < tool.teeth(); ++j) {
+      const double cp = tt.cos[j] * el.cl - tt.sin[j] * el.sl;
+      const double sp = tt.sin[j] * el.cl + tt.cos[j] * el.sl;
+      const Vec3 n(el.sa * cp, el.sa * sp, -el.ca), m(el.ca * cp, el.ca * sp, el.sa),
+          v(-sense * sp, sense * cp, 0);
+      double t =
+          st.feed_per_tooth * st.feed_direction.dot(n) + el.sa * (tt.run_c * cp + tt.run_s * sp);
+      if (per_edge) t += tt.more[j] * (st.edge_radial * el.sa - st.edge_axial * el.ca);
+      if (t <= 0) continue;  // not in cut: the element faces away from the feed
+      if (st.in_material) {
+        // The element's place from the tube's centre on the axis: R n on a ball, as it was.
+        Vec3 place = el.up >= 0 ? Vec3(tool.reach() * cp, tool.reach() * sp, el.up) : Vec3(R * n);
+        if (el.up < 0 && ring > 0) place += Vec3(ring * cp, ring * sp, 0);
+        if (per_edge) place += j * Vec3(st.edge_radial * cp, st.edge_radial * sp, st.edge_axial);
+        if (!st.in_material(place)) continue;  // air: above or already cut
+      }
+      const double ft = kte_ * ds + ktc_ * t * db, fr = kre_ * ds + krc_ * t * db,
+                   fa = kae_ * ds + kac_ * t * db;
+      const Vec3 f = -ft * v - fr * n - fa * m;
+      sum.force += f;
+      const double w = f.norm();
+      sum.weight += w;
+      // The element's height above the tip.
+      sum.moment += el.up >= 0 ? w * (R + el.up) : w * R * (1 - el.ca);
+    }
+  }
+
   struct EdgeTable {
     const ToolGeometry* tool;
-    double fingerprint[6];  // what tells a tool at a reused address from the one tabulated
-    double step;
+    double fingerprint[7];  // what tells a tool at a reused address from the one tabulated
+    double step, start;     // the elements' size and where the first begins (rad)
     std::vector<Element> elements;
   };
-  // The element at polar angle a (its middle).
+  // The element at polar angle a (its middle). Its edge runs rho = c + r sin(a) from the axis.
   static Element element(const ToolGeometry& tool, double a) {
     const double held = std::max(a, tool.min_polar_angle());  // below it the lag is held
-    const double lag = tool.lag(held), slope = std::sin(a) * tool.lag_slope(held);
+    const double lag = tool.lag(held),
+                 slope = (std::sin(a) + tool.ring() / tool.radius()) * tool.lag_slope(held);
     return {std::sin(a), std::cos(a), std::cos(lag), std::sin(lag), std::sqrt(1 + slope * slope)};
+  }
+  // A side element at height z: a helix of lead side_lead() on the cylinder of radius reach().
+  static Element side_element(const ToolGeometry& tool, double z) {
+    const double lag = tool.lag(M_PI / 2) - tool.side_lead() * z;
+    const double slope = tool.reach() * tool.side_lead();
+    return {1.0, 0.0, std::cos(lag), std::sin(lag), std::sqrt(1 + slope * slope), z};
   }
   static void fingerprint(const ToolGeometry& tool, double* out) {
     out[0] = tool.radius(), out[1] = tool.teeth(), out[2] = tool.min_polar_angle();
     out[3] = tool.lag(0.3), out[4] = tool.lag(1.2), out[5] = tool.lag_slope(0.7);
+    out[6] = tool.ring();
   }
-  // The table for `tool`, built when first asked (or when another tool comes).
+  // The table for `tool`, built when first asked (or when another tool comes). Elements of a
+  // quarter circle's 1 / elements_ from the edge's start; none on a sharp corner (r = 0).
   std::shared_ptr<const EdgeTable> edge_table(const ToolGeometry& tool) const {
-    double print[6];
+    double print[7];
     fingerprint(tool, print);
     std::lock_guard<std::mutex> lock(mutex_);
-    if (table_ && table_->tool == &tool && std::equal(print, print + 6, table_->fingerprint))
+    if (table_ && table_->tool == &tool && std::equal(print, print + 7, table_->fingerprint))
       return table_;
     auto t = std::make_shared<EdgeTable>();
     t->tool = &tool;
-    std::copy(print, print + 6, t->fingerprint);
+    std::copy(print, print + 7, t->fingerprint);
     t->step = M_PI / 2 / static_cast<double>(elements_);
-    for (std::size_t e = 0; e < elements_; ++e)
-      t->elements.push_back(element(tool, (static_cast<double>(e) + 0.5) * t->step));
+    t->start = tool.first_polar_angle();
+    const auto n = tool.radius() > 0
+                       ? static_cast<std::size_t>(std::ceil((M_PI / 2 - t->start) / t->step - 1e-9))
+                       : 0;
+    for (std::size_t e = 0; e < n; ++e)
+      t->elements.push_back(element(tool, t->start + (static_cast<double>(e) + 0.5) * t->step));
     table_ = t;
     return table_;
   }

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "cutter_schema.hpp"
 #include "topomill/params.hpp"
 #include "topomill/tool_geometry.hpp"
 
@@ -17,15 +18,8 @@ class BallEnd : public ToolGeometry {
         .above(0)
         .at_most(1000)
         .is_required();
-    s.add_integer("teeth", "Number of teeth N, evenly spaced")
-        .at_least(1)
-        .at_most(64)
-        .with_default(std::int64_t{2});
-    s.add_number("helix_angle", "Helix angle gamma where the edge meets the shank")
-        .with_unit("deg")
-        .at_least(0)
-        .below(90)
-        .with_default(30.0);
+    add_teeth(s);
+    add_helix(s, "Helix angle gamma where the edge meets the shank");
     return s;
   }
 

@@ -43,15 +43,43 @@ class ZMap : public TopographyEvaluator {
     const double cell = std::min(g.dx, g.dy);
     const double omega = std::abs(rq.path->spindle_rate());
     const double phi_max_all = std::min(M_PI / 2, rq.lambda_max + margin_ * rq.kappa);
-    return time_fraction_ * cell /
-           (omega * rq.tool->radius() * std::max(std::sin(phi_max_all), 1e-12));
+    // The fastest edge point: at the CATW's widest on a ball, at the rim on any other cutter.
+    const double rim = windowed(*rq.tool) ? rq.tool->radius() * std::sin(phi_max_all)
+                                          : rq.tool->reach() + max_edge_step(rq);
+    return time_fraction_ * cell / (omega * std::max(rim, 1e-12 * rq.tool->radius()));
   }
+
+  // A ball's edge points are taken within the CATW (the paper's); any other cutter's all along
+  // its edge: the CATW's polar angles hold for the ball's sphere, not for a tube on a ring, where
+  // the points in contact differ from one azimuth to the next.
+  static bool windowed(const ToolGeometry& tool) { return tool.ring() == 0; }
+  static double max_edge_step(const EvaluationRequest& rq) {
+    const ToolPath::Runout& r = rq.path->runout();
+    return std::abs(r.edge_radial) * (rq.tool->teeth() - 1);
+  }
+  // The most an edge point moves per radian of alpha (the section's speed): R on a circle, more
+  // on a tilted insert's section; sampled, with the circle's R as its floor.
+  static double section_speed(const ToolGeometry& tool) {
+    constexpr int kSamples = 256;
+    const double lo = tool.first_polar_angle(), step = (M_PI / 2 - lo) / kSamples;
+    double speed = tool.radius();
+    for (int k = 0; k < kSamples; ++k) {
+      const Vec2 a = tool.section(lo + k * step), b = tool.section(lo + (k + 1) * step);
+      speed = std::max(speed, (b - a).norm() / step * kSpeedMargin);
+    }
+    return speed;
+  }
+  static constexpr double kSpeedMargin = 1.01;   // a chord is shorter than its arc
+  static constexpr double kBeyondMargin = 1.01;  // round-off, squared distances
 
   // Memory: one map per thread. Time: every edge point of every tooth at every step, 30 ns
   // each (measured: 368e6 points in 11.2 s on the paper's lambda = 30 deg scene, one thread),
   // the edge points per tooth from Eq. 44 over the widened contact range at the steepest lambda.
   bool follows(const ToolPath::Posture&) const override { return true; }  // any: it turns points
   bool follows_curves() const override { return true; }  // any: it moves them with the centre
+  bool follows_cutter(const ToolGeometry&, const ToolPath::Runout&) const override {
+    return true;  // any: its points are the edges'
+  }
 
   EvaluationCost estimate_cost(const EvaluationRequest& rq, const Grid& g) const override {
     EvaluationCost c;
@@ -63,8 +91,12 @@ class ZMap : public TopographyEvaluator {
     for (std::size_t p = 0; p < rq.path->passes(); ++p) steps += rq.path->pass(p).t_end / dt + 1;
     const double lo = std::max(0.0, rq.lambda_max - margin_ * rq.kappa);
     const double hi = std::min(M_PI / 2, rq.lambda_max + margin_ * rq.kappa);
+    const double dw = edge_fraction_ * std::min(g.dx, g.dy);
     const double points =
-        std::ceil((hi - lo) * rq.tool->radius() / (edge_fraction_ * std::min(g.dx, g.dy))) + 1;
+        windowed(*rq.tool)
+            ? std::ceil((hi - lo) * rq.tool->radius() / dw) + 1
+            : std::ceil((M_PI / 2 - rq.tool->first_polar_angle()) * section_speed(*rq.tool) / dw) +
+                  1 + (rq.tool->has_bottom() ? std::ceil(rq.tool->ring() / dw) : 0.0);
     c.seconds = 30e-9 * steps * rq.tool->teeth() * points;
     c.seconds_key = time_step_ > 0 ? "evaluator.time_step"
                                    : "region.spacing (the time step follows it, Eq. 46)";
@@ -85,6 +117,21 @@ class ZMap : public TopographyEvaluator {
     const double cell = std::min(g.dx, g.dy);
     const double dt = time_step(rq, g);
     const double dw = edge_fraction_ * cell;
+    const double speed = windowed(tool) ? R : section_speed(tool);
+    const ToolPath::Runout& runout = path.runout();
+    const bool per_edge = runout.per_edge();
+    // No edge point lies farther than this from the centre: a step whose centre is farther from
+    // the grid (a pass beyond a face mill's reach) lowers nothing, and is skipped.
+    // (An edge point is at most reach() from the axis and r below the tube's centre plane.)
+    const double extent = std::hypot(tool.reach(), tool.radius()) + max_edge_step(rq) +
+                          std::abs(runout.edge_axial) * (tool.teeth() - 1);
+    const double x_lo = g.x0 - g.dx / 2, x_hi = g.x0 + (static_cast<double>(g.nx) - 0.5) * g.dx;
+    const double y_lo = g.y0 - g.dy / 2, y_hi = g.y0 + (static_cast<double>(g.ny) - 0.5) * g.dy;
+    auto beyond = [&](const Vec3& c) {
+      const double ox = std::max({0.0, x_lo - c.x(), c.x() - x_hi}),
+                   oy = std::max({0.0, y_lo - c.y(), c.y() - y_hi});
+      return ox * ox + oy * oy > extent * extent * kBeyondMargin;
+    };
 
     // Steps are numbered across passes: pass p holds steps first[p] .. first[p + 1] - 1, at
     // t = (s - first[p]) dt. (A table of every step cost 16 bytes each, 199 GiB at a 1e-10 s
@@ -100,8 +147,33 @@ class ZMap : public TopographyEvaluator {
     std::vector<std::uint64_t> points(threads, 0), updates(threads, 0);
     auto work = [&](unsigned w) {
       HeightMap& m = maps[w];
-      std::vector<double> ring, depth, lag;  // per edge point: R sin(alpha), -R cos(alpha), Psi
+      // Per edge point: its distance from the axis, height and lag (R sin(alpha), -R cos(alpha),
+      // Psi on a ball).
+      std::vector<double> ring, depth, lag;
       const double tip = tool.min_polar_angle();
+      auto fill = [&](double lo, double hi, int n) {
+        ring.resize(n + 1), depth.resize(n + 1), lag.resize(n + 1);
+        for (int e = 0; e <= n; ++e) {
+          const double alpha = lo + (hi - lo) * e / n;
+          const Vec2 section = tool.section(alpha);
+          ring[e] = section.x();
+          depth[e] = section.y();
+          lag[e] = tool.lag(std::max(alpha, tip));
+        }
+      };
+      if (!windowed(tool)) {
+        const double lo = tool.first_polar_angle();
+        fill(lo, M_PI / 2, std::max(1, static_cast<int>(std::ceil((M_PI / 2 - lo) * speed / dw))));
+        // The flat bottom inside the ring, radially at the lag the edge has at its lowest point.
+        if (tool.has_bottom()) {
+          const int nb = static_cast<int>(std::ceil(tool.ring() / dw));
+          for (int e = 0; e < nb; ++e) {
+            ring.push_back(tool.ring() * e / nb);
+            depth.push_back(depth[0]);
+            lag.push_back(lag[0]);
+          }
+        }
+      }
       const std::size_t begin = total_steps * w / threads, end = total_steps * (w + 1) / threads;
       std::size_t p = static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), begin) -
                                                first.begin() - 1);
@@ -109,28 +181,28 @@ class ZMap : public TopographyEvaluator {
         while (s >= first[p + 1]) ++p;
         const double t = static_cast<double>(s - first[p]) * dt;
         const Vec3 centre = path.centre(p, t);
+        if (beyond(centre)) continue;
         const double spindle = path.spindle_angle(p, t);
-        // The contact's polar angle about the axis: |lambda| for the paper's vertical tool.
-        const double lambda = path.contact_angle(p, t);
-        const double lo = std::max(0.0, lambda - margin_ * rq.kappa);
-        const double hi = std::min(M_PI / 2, lambda + margin_ * rq.kappa);
-        const int n = std::max(1, static_cast<int>(std::ceil((hi - lo) * R / dw)));  // Eq. 44
-        ring.resize(n + 1), depth.resize(n + 1), lag.resize(n + 1);
-        for (int e = 0; e <= n; ++e) {
-          const double alpha = lo + (hi - lo) * e / n;
-          ring[e] = R * std::sin(alpha);
-          depth[e] = -R * std::cos(alpha);
-          lag[e] = tool.lag(std::max(alpha, tip));
+        if (windowed(tool)) {
+          // The contact's polar angle about the axis: |lambda| for the paper's vertical tool.
+          const double lambda = path.contact_angle(p, t);
+          const double lo = std::max(0.0, lambda - margin_ * rq.kappa);
+          const double hi = std::min(M_PI / 2, lambda + margin_ * rq.kappa);
+          fill(lo, hi, std::max(1, static_cast<int>(std::ceil((hi - lo) * R / dw))));  // Eq. 44
         }
         // A tilted tool's edge points are turned from its frame (identity when vertical).
         const bool vertical = path.pass(p).posture.vertical();
         const Eigen::Matrix3d frame = path.tool_frame(p, t);
         for (int tooth = 0; tooth < tool.teeth(); ++tooth) {
           const double theta = tool.tooth_angle(tooth) + spindle;
-          for (int e = 0; e <= n; ++e) {
+          // Per-edge runout: edge K farther out and higher by K steps (none: no change at all).
+          const double out = runout.edge_radial * tooth, up = runout.edge_axial * tooth;
+          for (std::size_t e = 0; e < ring.size(); ++e) {
             // Same point as tool.edge_point(tooth, alpha, spindle), with per-alpha terms hoisted.
             const double phi = theta + lag[e];
-            double qx = ring[e] * std::cos(phi), qy = ring[e] * std::sin(phi), qz = depth[e];
+            const double rho = per_edge ? ring[e] + out : ring[e];
+            double qx = rho * std::cos(phi), qy = rho * std::sin(phi),
+                   qz = per_edge ? depth[e] + up : depth[e];
             if (!vertical) {
               const Vec3 turned = frame * Vec3(qx, qy, qz);
               qx = turned.x(), qy = turned.y(), qz = turned.z();

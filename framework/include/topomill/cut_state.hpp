@@ -12,7 +12,9 @@ struct CutState {
   double spindle_angle = 0.0;    // rad, positive about +Z
   Vec3 feed_direction{0, 1, 0};  // unit vector in CS2 (tangent to the surface along the pass)
   double feed_per_tooth = 0.0;   // fz, mm
-  double alpha_min = 0.0;        // engaged range of the edge's polar angle (CATW), rad
+  // Engaged range of the edge's polar angle (CATW), rad; for a cutter with a ring, its whole edge
+  // (the CATW is the ball's), with in_material telling what cuts.
+  double alpha_min = 0.0;
   double alpha_max = 0.0;
   double inclination = 0.0;   // lambda of the surface under the tool, rad
   double spindle_rate = 0.0;  // rad/s, signed: > 0 counter-clockwise seen from above
@@ -27,6 +29,8 @@ struct CutState {
   // so its chip (the force model's business; the path already carries the offset).
   double runout = 0.0;        // mm
   double runout_angle = 0.0;  // rad
+  // Per-edge runout (ToolPath::Runout): edge K is K edge_radial farther out, K edge_axial higher.
+  double edge_radial = 0.0, edge_axial = 0.0;  // mm
 };
 
 // Resultant cutting force on the tool (N, CS2) and the load centre: the force-weighted mean

@@ -63,7 +63,8 @@ class TOPOMILL_API ToolPath {
     std::vector<Waypoint> waypoints;
   };
 
-  // `offset` is R - ap, the distance of the ball centre from the uncut surface along its normal;
+  // `offset` is R - ap, the distance of the ball centre from the uncut surface along its normal
+  // (for a cutter with a ring, r - ap, and set_ring adds the ring's part);
   // `feed_speed` vf in mm/s; `spindle_rate` in rad/s, signed (negative = clockwise from above).
   // Throws std::invalid_argument for a line pass off the axes, or waypoints that do not move.
   ToolPath(std::shared_ptr<const SurfaceShape> surface, double offset, double feed_speed,
@@ -74,6 +75,12 @@ class TOPOMILL_API ToolPath {
   double feed_speed() const { return feed_speed_; }
   double spindle_rate() const { return spindle_rate_; }
   double offset() const { return offset_; }
+  // A cutter whose tube is centred on a ring c about its axis (tool_geometry.hpp) touches a plane
+  // whose normal is beta from its axis c sin(beta) farther out than a ball of the tube's radius:
+  // its centre is put that much farther along the normal through the foot point (exact on a
+  // plane; on a curved surface the tangent plane at the foot stands for it). None by default.
+  void set_ring(double c) { ring_ = c; }
+  double ring() const { return ring_; }
   const SurfaceShape& surface() const { return *surface_; }
 
   FeedAxis feed_axis() const { return axis_; }
@@ -134,9 +141,13 @@ class TOPOMILL_API ToolPath {
   // Radial runout: the tool's axis, and with it the ball centre, `offset` (mm) off the spindle
   // axis in the plane normal to it, in the direction spindle_angle + `angle`: it turns with the
   // spindle. Part of the nominal path (kinematics, not a response to force); none by default.
+  // Per-edge runout, as Wang et al. (2023) and most of the literature give it: edge K (0-based)
+  // K edge_radial mm farther from the axis and K edge_axial mm higher than edge 0.
   struct Runout {
     double offset = 0.0;
     double angle = 0.0;  // rad, the offset's direction when the spindle angle is 0
+    double edge_radial = 0.0, edge_axial = 0.0;
+    bool per_edge() const { return edge_radial != 0 || edge_axial != 0; }
   };
   void set_runout(const Runout& r) { runout_ = r; }
   const Runout& runout() const { return runout_; }
@@ -153,6 +164,7 @@ class TOPOMILL_API ToolPath {
  private:
   std::shared_ptr<const SurfaceShape> surface_;
   double offset_, feed_speed_, spindle_rate_;
+  double ring_ = 0.0;
   std::vector<Pass> passes_;
   FeedAxis axis_;
   std::vector<Correction> corrections_;

@@ -60,6 +60,12 @@ class TOPOMILL_API TopographyEvaluator : public Model {
   // speed (ToolPath::feed_axis() None: cutter-location data, radial or spiral passes). By
   // default not, and the core refuses such a path for it.
   virtual bool follows_curves() const { return false; }
+  // Whether evaluate() follows this cutter with this runout. By default the ball end (ring 0)
+  // without per-edge runout, the only cutter evaluators knew before others were added, and the
+  // core refuses any other for it.
+  virtual bool follows_cutter(const ToolGeometry& tool, const ToolPath::Runout& runout) const {
+    return tool.ring() == 0 && !runout.per_edge();
+  }
 
   // The cost of evaluate() for this request (see EvaluationCost); by default unknown (zero).
   virtual EvaluationCost estimate_cost(const EvaluationRequest& request, const Grid& grid) const {

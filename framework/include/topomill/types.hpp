@@ -8,6 +8,7 @@
 namespace topomill {
 
 // Positions in mm in the workpiece frame CS2 (X cross-feed, Y feed, Z up) unless stated.
+using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 
 // A regular grid of nodes over the XY projection; node (i, j) is at (x0 + i dx, y0 + j dy).

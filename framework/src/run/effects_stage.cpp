@@ -31,8 +31,18 @@ void require_finite(const std::vector<Vec3>& v, const std::string& what) {
                                "; nothing was written");
 }
 
-// Material at the tool's position: below the uncut surface, and farther than R from the previous
-// pass's centre line (one step-over back, along the same feed direction).
+// Whether q, from a point of the previous pass's centre line (along the unit `feed`), lies in
+// what that pass swept: within R of the line for a ball; for a tube of radius R on a ring c about
+// the axis a, the solid torus (its bottom disc filled) swept along the line.
+bool in_swept(const Vec3& q, const Vec3& feed, const Vec3& axis, double R, double ring) {
+  const Vec3 across = q - q.dot(feed) * feed;
+  if (ring == 0) return across.squaredNorm() < R * R;
+  const double up = across.dot(axis), out = std::max(0.0, (across - up * axis).norm() - ring);
+  return out * out + up * up < R * R;
+}
+
+// Material at the tool's position: below the uncut surface, and outside what the previous pass
+// swept (one step-over back, along the same feed direction).
 std::function<bool(const Vec3&)> material_test(const ToolPath& path, std::size_t p,
                                                const CutState& st, double R) {
   const Vec3 centre = path.nominal_centre(p, st.time);
@@ -42,9 +52,10 @@ std::function<bool(const Vec3&)> material_test(const ToolPath& path, std::size_t
                         : Vec3(0, std::cos(st.inclination), -std::sin(st.inclination));
   const Vec3 back = st.stepover * step;
   const SurfaceShape* surface = &path.surface();
+  const Vec3 axis = path.axis(p, st.time);
+  const double ring = path.ring();
   return [=](const Vec3& offset) {
-    const Vec3 q = offset + back;  // the cheaper test first
-    if ((q - q.dot(feed) * feed).squaredNorm() < R * R) return false;
+    if (in_swept(offset + back, feed, axis, R, ring)) return false;  // the cheaper test first
     const Vec3 point = centre + offset;
     return surface->normal_residual(point.y(), point.z(), 0.0) < 0;
   };
@@ -68,12 +79,14 @@ std::function<bool(const Vec3&)> material_test(const ToolPath& path, const Swept
 // A tilted tool's state as the force and deformation models read it: in the tool frame (its axis
 // as z, the spindle angle measured about it), the feed direction turned into it, the contact's
 // polar angle about the axis for the surface's inclination, and the material test turned back.
-void to_tool_frame(const ToolPath& path, std::size_t p, double kappa, CutState& st) {
+void to_tool_frame(const ToolPath& path, std::size_t p, double kappa, const ToolGeometry& tool,
+                   CutState& st) {
   const Eigen::Matrix3d q = path.tool_frame(p, st.time);
   st.feed_direction = q.transpose() * st.feed_direction;
   st.inclination = path.contact_angle(p, st.time);
   st.alpha_min = std::max(0.0, st.inclination - kappa);
   st.alpha_max = std::min(M_PI / 2, st.inclination + kappa);
+  if (tool.ring() > 0) st.alpha_min = tool.first_polar_angle(), st.alpha_max = M_PI / 2;
   st.in_material = [q, world = std::move(st.in_material)](const Vec3& offset) {
     return world(q * offset);
   };
@@ -121,13 +134,15 @@ void sample_forces(const Scene& scene, const Prepared& m, unsigned threads, doub
     st.inclination = path.surface().inclination(path.surface_y(p, st.time));
     st.alpha_min = std::max(0.0, std::abs(st.inclination) - L.kappa);
     st.alpha_max = std::min(M_PI / 2, std::abs(st.inclination) + L.kappa);
+    if (m.tool->ring() > 0) st.alpha_min = m.tool->first_polar_angle(), st.alpha_max = M_PI / 2;
     st.spindle_rate = path.spindle_rate();
     st.depth_of_cut = ap;
     st.stepover = ae;
     st.runout = path.runout().offset, st.runout_angle = path.runout().angle;
+    st.edge_radial = path.runout().edge_radial, st.edge_axial = path.runout().edge_axial;
     st.in_material = waypoints ? material_test(path, *swept, p, st, m.tool->radius())
                                : material_test(path, p, st, m.tool->radius());
-    if (!path.pass(p).posture.vertical()) to_tool_frame(path, p, L.kappa, st);
+    if (!path.pass(p).posture.vertical()) to_tool_frame(path, p, L.kappa, *m.tool, st);
     forces[p][k] = in_table(scene.slot("force"), [&] { return m.force->evaluate(*m.tool, st); });
     if (!path.pass(p).posture.vertical())
       forces[p][k].force = path.tool_frame(p, st.time) * forces[p][k].force;
@@ -233,6 +248,13 @@ void apply_effects(const Scene& scene, const Prepared& m, unsigned threads, Stag
   Samples samples;
   for (std::size_t p = 0; p < path.passes() && !samples.swept; ++p)
     if (!path.pass(p).waypoints.empty()) samples.swept = std::make_unique<SweptPath>(path);
+  // What cutter-location data swept is tested for a ball only (SweptPath).
+  if (samples.swept && m.tool->ring() > 0)
+    throw InputError(scene.slot("force").where, "force",
+                     "the force along cutter-location data is computed for a ball end only, and "
+                     "the cutter is '" +
+                         scene.slot("tool").plugin +
+                         "': expected a ball end, or a path model's passes (raster, zigzag)");
   samples.states.resize(path.passes()), samples.forces.resize(path.passes());
   clock.run("force", [&] { sample_forces(scene, m, threads, dt, samples, result); });
   std::vector<std::vector<Vec3>> corrections(path.passes());

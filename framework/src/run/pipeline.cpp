@@ -69,6 +69,20 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
                          "' follows straight passes along X or Y only, all one way at one speed, "
                          "and this path has others (radial, spiral or bent passes, or a change of "
                          "feed): expected evaluator.plugin = \"zmap\", which follows any");
+  if (!out.evaluator->follows_cutter(*out.tool, ToolPath::Runout{}))
+    throw InputError(scene.slot("tool").where, "tool",
+                     "the evaluator '" + evaluator + "' does not follow the cutter '" +
+                         scene.slot("tool").plugin +
+                         "': expected evaluator.plugin = \"zmap\", which follows any cutter");
+  if (!out.evaluator->follows_cutter(*out.tool, out.layout.path->runout())) {
+    const Params& runout = scene.table("runout");
+    const std::string key =
+        runout.number("edge_radial_step") != 0 ? "edge_radial_step" : "edge_axial_step";
+    throw InputError(runout.where(key), "runout." + key,
+                     "the evaluator '" + evaluator +
+                         "' does not follow a per-edge runout: expected evaluator.plugin = "
+                         "\"zmap\", which follows any");
+  }
   for (std::size_t p = 0; p < out.layout.path->passes(); ++p) {
     const ToolPath::Posture& q = out.layout.path->pass(p).posture;
     if (out.evaluator->follows(q)) continue;
