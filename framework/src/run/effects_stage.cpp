@@ -8,6 +8,7 @@
 
 #include "interrupt.hpp"
 #include "resources.hpp"
+#include "run/swept_solid.hpp"
 #include "swept_path.hpp"
 
 namespace topomill {
@@ -29,16 +30,6 @@ void require_finite(const std::vector<Vec3>& v, const std::string& what) {
     if (!v[i].allFinite())
       throw std::runtime_error(what + " is not finite at sample " + std::to_string(i) +
                                "; nothing was written");
-}
-
-// Whether q, from a point of the previous pass's centre line (along the unit `feed`), lies in
-// what that pass swept: within R of the line for a ball; for a tube of radius R on a ring c about
-// the axis a, the solid torus (its bottom disc filled) swept along the line.
-bool in_swept(const Vec3& q, const Vec3& feed, const Vec3& axis, double R, double ring) {
-  const Vec3 across = q - q.dot(feed) * feed;
-  if (ring == 0) return across.squaredNorm() < R * R;
-  const double up = across.dot(axis), out = std::max(0.0, (across - up * axis).norm() - ring);
-  return out * out + up * up < R * R;
 }
 
 // Material at the tool's position: below the uncut surface, and outside what the previous pass

@@ -1,0 +1,176 @@
+// The Z-map against an exact brute force written here, at every node of a patch, for each cutter
+// with a ring and for per-edge runout: for a vertical tool over a plate, tooth K's edge is over a
+// node at distance rho from the axis when its azimuth there, theta_K + phi(t) + Psi(alpha(rho)),
+// equals the node's; the phase is scanned finely over the pass, every crossing is halved to
+// round-off, and the lowest height of the edge at a crossing is the node's. The Z-map samples
+// time and edge: it must agree within the local slope times its cell.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "support/builtin_models.hpp"
+#include "support/scenes.hpp"
+#include "topomill/tool_geometry.hpp"
+
+using testing::run_scene;
+using topomill::ToolGeometry;
+using topomill::ToolPath;
+using topomill::Vec3;
+
+namespace {
+// Where tooth K's edge crosses rho from the axis (circular sections): its polar angle, or NaN
+// where no edge of the tooth lies at rho (beyond the rim, inside an insert's inner end); the
+// bottom inside the ring of an end mill is alpha = 0 with the height of the tube's lowest point.
+struct EdgeAt {
+  double alpha, height;
+};
+EdgeAt edge_at(const ToolGeometry& tool, double rho, double out, double up) {
+  const double c = tool.ring() + out, r = tool.radius();
+  if (tool.has_bottom() && rho <= c) return {0.0, -r + up};
+  const double s = r > 0 ? (rho - c) / r : NAN;
+  if (!(s >= std::sin(tool.first_polar_angle()) && s <= 1)) return {NAN, NAN};
+  return {std::asin(s), -r * std::sqrt(1 - s * s) + up};
+}
+
+// How far the Z-map may lie from the exact height, in steps to the nearest neighbour: half a
+// cell's diagonal is 0.71 of one.
+constexpr double kSlack = 0.75;
+
+// The lowest height any tooth's edge passes over (x, y) along pass p, by the scan and halving.
+double oracle(const ToolGeometry& tool, const ToolPath& path, std::size_t p, double x, double y) {
+  const ToolPath::Runout& run = path.runout();
+  const double t_end = path.pass(p).t_end;
+  const double rev = 2 * M_PI / std::abs(path.spindle_rate());
+  const double dt = rev / 1000;  // the phase turns far less than a quarter turn a step
+  double best = INFINITY;
+  for (int k = 0; k < tool.teeth(); ++k) {
+    const double out = k * run.edge_radial, up = k * run.edge_axial;
+    // The phase of tooth k's edge against the node's azimuth at t, wrapped to (-pi, pi]; NaN
+    // where no edge lies at the node's distance.
+    auto phase = [&](double t, EdgeAt* at) {
+      const Vec3 c = path.centre(p, t);
+      const double qx = x - c.x(), qy = y - c.y();
+      const EdgeAt e = edge_at(tool, std::hypot(qx, qy), out, up);
+      if (at) *at = {e.alpha, e.height + c.z()};
+      if (std::isnan(e.alpha)) return std::nan("");
+      const double edge = tool.tooth_angle(k) + path.spindle_angle(p, t) + tool.lag(e.alpha);
+      return std::remainder(edge - std::atan2(qy, qx), 2 * M_PI);
+    };
+    double t0 = 0, g0 = phase(0, nullptr);
+    for (double t1 = dt; t1 <= t_end; t1 += dt) {
+      const double g1 = phase(t1, nullptr);
+      // A sign change within a quarter turn is a crossing; a jump of nearly 2 pi is the wrap.
+      if (g0 * g1 <= 0 && std::abs(g1 - g0) < M_PI / 2) {
+        double a = t0, b = t1, ga = g0;
+        for (int it = 0; it < 80; ++it) {
+          const double m = 0.5 * (a + b), gm = phase(m, nullptr);
+          if (std::isnan(gm)) break;
+          (ga * gm <= 0 ? b : a) = m;
+          if (ga * gm > 0) ga = gm;
+        }
+        EdgeAt at;
+        phase(0.5 * (a + b), &at);
+        if (!std::isnan(at.height)) best = std::min(best, at.height);
+      }
+      t0 = t1, g0 = g1;
+    }
+  }
+  return best;
+}
+
+using Values = std::vector<std::pair<std::string, double>>;
+
+// A vertical tool on one pass along +Y through x = 0 over a plate (the next 50 mm away), the
+// patch centred x across it; the Z-map at half its usual time step.
+std::string plate(const std::string& plugin, const Values& tool, const std::string& extra,
+                  double x) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "[tool]\nplugin = '" << plugin << "'\n";
+  for (const auto& [key, value] : tool) s << key << " = " << value << "\n";
+  s << "[workpiece]\nplugin = 'inclined_plane'\nangle = 0.0\n"
+    << "[cutting]\nspindle_speed = 4000\nfeed_per_tooth = 0.1\ndepth_of_cut = 0.1\n"
+    << "stepover = 50.0\nspindle_direction = 'ccw'\n[region]\ncentre = [" << x
+    << ", 0.0]\nsize = [0.04, 0.04]\nspacing = 0.004\n[evaluator]\nplugin = 'zmap'\n"
+    << "time_step_fraction = 0.5\n"
+    << extra;
+  return s.str();
+}
+}  // namespace
+
+TEST_CASE("the Z-map cuts every cutter where an exact brute force does", "[cutter][oracle]") {
+  struct Case {
+    const char* name;
+    std::string plugin;
+    Values tool;
+    std::string extra;
+    double x;  // the patch's centre across the pass
+  };
+  const Case c = GENERATE(Case{"bull-nose, on its corner",
+                               "bull_nose",
+                               {{"diameter", 2}, {"corner_radius", 0.5}},
+                               "",
+                               0.7},
+                          Case{"bull-nose, over its bottom's rim",
+                               "bull_nose",
+                               {{"diameter", 2}, {"corner_radius", 0.5}},
+                               "",
+                               0.5},
+                          Case{"flat end with a corner radius, per-edge runout",
+                               "flat_end",
+                               {{"diameter", 2}, {"corner_radius", 0.2}, {"teeth", 3}},
+                               "[runout]\nedge_radial_step = 0.004\nedge_axial_step = 0.001\n",
+                               0.85},
+                          Case{"round inserts, inner side, per-edge runout",
+                               "round_insert",
+                               {{"diameter", 1}, {"insert_radius", 0.5}, {"radial_rake", 5}},
+                               "[runout]\nedge_radial_step = -0.006\nedge_axial_step = 0.0005\n",
+                               0.2},
+                          Case{"round inserts, outer side",
+                               "round_insert",
+                               {{"diameter", 1}, {"insert_radius", 0.5}},
+                               "",
+                               0.65},
+                          Case{"ball end, per-edge runout",
+                               "ball_end_constant_lead",
+                               {{"radius", 1}},
+                               "[runout]\nedge_radial_step = 0.003\nedge_axial_step = -0.001\n",
+                               0.3});
+  DYNAMIC_SECTION(c.name) {
+    const auto r = run_scene(plate(c.plugin, c.tool, c.extra, c.x));
+    const auto tool = testing::make_model<ToolGeometry>(c.plugin, c.tool);
+    const ToolPath& path = *r.layout.path;
+    std::size_t pass = path.passes();
+    for (std::size_t p = 0; p < path.passes(); ++p)
+      if (path.pass(p).x == 0) pass = p;
+    REQUIRE(pass < path.passes());
+    const auto& g = r.raw.grid;
+    std::vector<double> exact(g.nx * g.ny);
+    for (std::size_t j = 0; j < g.ny; ++j)
+      for (std::size_t i = 0; i < g.nx; ++i)
+        exact[j * g.nx + i] = oracle(*tool, path, pass, g.x0 + static_cast<double>(i) * g.dx,
+                                     g.y0 + static_cast<double>(j) * g.dy);
+    // The Z-map puts an edge point on the nearest node: off by the slope times up to half a
+    // diagonal, the slope taken from the exact heights' steepest step to a neighbour.
+    double worst = 0;
+    for (std::size_t j = 0; j < g.ny; ++j)
+      for (std::size_t i = 0; i < g.nx; ++i) {
+        const double z = exact[j * g.nx + i];
+        REQUIRE(std::isfinite(z));
+        double step = 0;
+        for (auto [di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+          const long ii = static_cast<long>(i) + di, jj = static_cast<long>(j) + dj;
+          if (ii < 0 || jj < 0 || ii >= static_cast<long>(g.nx) || jj >= static_cast<long>(g.ny))
+            continue;
+          step = std::max(step, std::abs(exact[jj * g.nx + ii] - z));
+        }
+        const double off = std::abs(r.raw.at(i, j) - std::min(z, 0.0));
+        worst = std::max(worst, off / (step + 1e-6));
+        INFO("node (" << i << ", " << j << "): zmap " << r.raw.at(i, j) << ", exact " << z);
+        CHECK(off <= kSlack * step + 1e-6);
+      }
+    WARN(c.name << ": worst Z-map error " << worst << " of the step to a neighbour");
+  }
+}
