@@ -49,7 +49,9 @@ class Cantilever : public Deformation {
     if (overhang_ <= R)
       throw ParamError("overhang", "the overhang must exceed the ball radius " + format_number(R) +
                                        " mm: the ball has to stand out of the holder");
-    const double de = ratio_ * 2 * R;
+    // The shank's diameter is the cutter's (2 reach: 2 R for a ball, D for an end mill or face
+    // mill); the contact is r (1 - cos) above the tip on the tube of radius r.
+    const double de = ratio_ * 2 * tool.reach();
     const double ei = e_ * M_PI * std::pow(de, 4) / 64;
     const double z = R * (1 - std::cos(st.inclination));
     const double s = overhang_ - z, sF = overhang_ - std::clamp(f.load_centre, 0.0, overhang_);

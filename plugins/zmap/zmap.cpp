@@ -43,9 +43,14 @@ class ZMap : public TopographyEvaluator {
     const double cell = std::min(g.dx, g.dy);
     const double omega = std::abs(rq.path->spindle_rate());
     const double phi_max_all = std::min(M_PI / 2, rq.lambda_max + margin_ * rq.kappa);
-    // The fastest edge point: at the CATW's widest on a ball, at the rim on any other cutter.
-    const double rim = windowed(*rq.tool) ? rq.tool->radius() * std::sin(phi_max_all)
-                                          : rq.tool->reach() + max_edge_step(rq);
+    // The fastest edge point: at the CATW's widest on a ball (the paper's expression, to the bit),
+    // at the rim on any other cutter; a per-edge step adds to either.
+    if (windowed(*rq.tool) && !rq.path->runout().per_edge())
+      return time_fraction_ * cell /
+             (omega * rq.tool->radius() * std::max(std::sin(phi_max_all), 1e-12));
+    const double rim =
+        (windowed(*rq.tool) ? rq.tool->radius() * std::sin(phi_max_all) : rq.tool->reach()) +
+        max_edge_step(rq);
     return time_fraction_ * cell / (omega * std::max(rim, 1e-12 * rq.tool->radius()));
   }
 

@@ -61,3 +61,24 @@ TEST_CASE("springback: J1 of Eq. 30, the J2 -> 0 limit, and a clear refusal", "[
                                                       Catch::Contains("Fx = 400 N") &&
                                                       Catch::Contains("K = 1500 MPa"));
 }
+
+TEST_CASE("the cantilever's section is the cutter's diameter, whatever its corner",
+          "[deflection][cutter]") {
+  // F L^3 / 3EI with I = pi (0.8 D)^4 / 64: a bull-nose and a flat end of D = 10 mm bend as the
+  // ball end of R = 5 mm does, not as a beam of their corner's radius.
+  auto beam = make_model<topomill::Deformation>(
+      "cantilever", {{"overhang", 40}, {"young_modulus", 580}, {"diameter_ratio", 0.8}});
+  const double E = 580e3, I = M_PI * std::pow(8.0, 4) / 64, L = 40;
+  topomill::CutState st;
+  topomill::CuttingForce f;
+  f.force = {100, 0, 0};
+  for (const auto& [name, values] :
+       std::vector<std::pair<std::string, std::vector<std::pair<std::string, double>>>>{
+           {"bull_nose", {{"diameter", 10}, {"corner_radius", 2}}},
+           {"flat_end", {{"diameter", 10}}}}) {
+    INFO(name);
+    auto tool = make_model<topomill::ToolGeometry>(name, values);
+    CHECK(beam->correction(f, *tool, st).x() ==
+          Approx(100 * L * L * L / (3 * E * I)).epsilon(1e-12));
+  }
+}

@@ -202,7 +202,7 @@ void add_deformations(const Scene& scene, const Prepared& m, const Samples& samp
   }
 }
 
-// The corrections as the path's, once checked: finite, and within the tool's radius.
+// The corrections as the path's, once checked: finite, and within the tool's radius (its reach).
 void set_corrections(const Scene& scene, const Prepared& m, double dt, const Samples& samples,
                      std::vector<std::vector<Vec3>>& corrections, RunResult& result) {
   ToolPath& path = *m.layout.path;
@@ -215,11 +215,11 @@ void set_corrections(const Scene& scene, const Prepared& m, double dt, const Sam
   result.peak_correction = largest;
   for (const auto& pass : forces)
     for (const auto& f : pass) result.peak_force = std::max(result.peak_force, f.force.norm());
-  if (largest > m.tool->radius()) {
+  if (largest > m.tool->reach()) {
     const std::string table = m.dynamics ? "vibration" : m.deformations.front().first;
     throw InputError(scene.slot(table).where, table,
                      "the path correction reaches " + format_number(largest) +
-                         " mm, more than the ball radius " + format_number(m.tool->radius()) +
+                         " mm, more than the tool's radius " + format_number(m.tool->reach()) +
                          " mm: the effects' parameters (a mode's stiffness, the overhang) are "
                          "outside the range the linear models describe");
   }
