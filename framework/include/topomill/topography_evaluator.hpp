@@ -61,8 +61,8 @@ class TOPOMILL_API TopographyEvaluator : public Model {
   // default not, and the core refuses such a path for it.
   virtual bool follows_curves() const { return false; }
   // Whether evaluate() follows this cutter with this runout. By default the ball end (ring 0)
-  // without per-edge runout, the only cutter evaluators knew before others were added, and the
-  // core refuses any other for it.
+  // without per-edge runout, so that an evaluator written for the ball is never handed another
+  // cutter: the core refuses any other for it.
   virtual bool follows_cutter(const ToolGeometry& tool, const ToolPath::Runout& runout) const {
     return tool.ring() == 0 && !runout.per_edge();
   }
