@@ -108,6 +108,58 @@ class ZMap : public TopographyEvaluator {
     return c;
   }
 
+  // The edge points one step lowers nodes with, per point its distance from the axis, height and
+  // lag (R sin(alpha), -R cos(alpha), Psi on a ball).
+  struct EdgePoints {
+    const ToolGeometry& tool;
+    std::vector<double> ring, depth, lag;
+    explicit EdgePoints(const ToolGeometry& t) : tool(t) {}
+    // n + 1 points evenly over alpha in [lo, hi].
+    void fill(double lo, double hi, int n) {
+      const double tip = tool.min_polar_angle();
+      ring.resize(n + 1), depth.resize(n + 1), lag.resize(n + 1);
+      for (int e = 0; e <= n; ++e) {
+        const double alpha = lo + (hi - lo) * e / n;
+        const Vec2 section = tool.section(alpha);
+        ring[e] = section.x();
+        depth[e] = section.y();
+        lag[e] = tool.lag(std::max(alpha, tip));
+      }
+    }
+    // A cutter with a ring: its whole edge at most dw apart (the section moving at `speed` per
+    // radian), and the flat bottom inside the ring, radially at the lag of the edge's lowest point.
+    void whole(double speed, double dw) {
+      const double lo = tool.first_polar_angle();
+      fill(lo, M_PI / 2, std::max(1, static_cast<int>(std::ceil((M_PI / 2 - lo) * speed / dw))));
+      if (!tool.has_bottom()) return;
+      const int nb = static_cast<int>(std::ceil(tool.ring() / dw));
+      for (int e = 0; e < nb; ++e) {
+        ring.push_back(tool.ring() * e / nb);
+        depth.push_back(depth[0]);
+        lag.push_back(lag[0]);
+      }
+    }
+  };
+
+  // No edge point lies farther from the centre than `extent` (at most reach() from the axis and r
+  // below the tube's centre plane, and the per-edge steps): a step whose centre is farther from
+  // the grid (a pass beyond a face mill's reach) lowers nothing, and is skipped.
+  struct GridReach {
+    double extent, x_lo, x_hi, y_lo, y_hi;
+    GridReach(const EvaluationRequest& rq, const Grid& g)
+        : extent(std::hypot(rq.tool->reach(), rq.tool->radius()) + max_edge_step(rq) +
+                 std::abs(rq.path->runout().edge_axial) * (rq.tool->teeth() - 1)),
+          x_lo(g.x0 - g.dx / 2),
+          x_hi(g.x0 + (static_cast<double>(g.nx) - 0.5) * g.dx),
+          y_lo(g.y0 - g.dy / 2),
+          y_hi(g.y0 + (static_cast<double>(g.ny) - 0.5) * g.dy) {}
+    bool beyond(const Vec3& c) const {
+      const double ox = std::max({0.0, x_lo - c.x(), c.x() - x_hi}),
+                   oy = std::max({0.0, y_lo - c.y(), c.y() - y_hi});
+      return ox * ox + oy * oy > extent * extent * kBeyondMargin;
+    }
+  };
+
   explicit ZMap(const Params& p)
       : margin_(p.number("catw_margin")),
         time_step_(p.number("time_step")),
@@ -125,18 +177,7 @@ class ZMap : public TopographyEvaluator {
     const double speed = windowed(tool) ? R : section_speed(tool);
     const ToolPath::Runout& runout = path.runout();
     const bool per_edge = runout.per_edge();
-    // No edge point lies farther than this from the centre: a step whose centre is farther from
-    // the grid (a pass beyond a face mill's reach) lowers nothing, and is skipped.
-    // (An edge point is at most reach() from the axis and r below the tube's centre plane.)
-    const double extent = std::hypot(tool.reach(), tool.radius()) + max_edge_step(rq) +
-                          std::abs(runout.edge_axial) * (tool.teeth() - 1);
-    const double x_lo = g.x0 - g.dx / 2, x_hi = g.x0 + (static_cast<double>(g.nx) - 0.5) * g.dx;
-    const double y_lo = g.y0 - g.dy / 2, y_hi = g.y0 + (static_cast<double>(g.ny) - 0.5) * g.dy;
-    auto beyond = [&](const Vec3& c) {
-      const double ox = std::max({0.0, x_lo - c.x(), c.x() - x_hi}),
-                   oy = std::max({0.0, y_lo - c.y(), c.y() - y_hi});
-      return ox * ox + oy * oy > extent * extent * kBeyondMargin;
-    };
+    const GridReach reach(rq, g);
 
     // Steps are numbered across passes: pass p holds steps first[p] .. first[p + 1] - 1, at
     // t = (s - first[p]) dt. (A table of every step cost 16 bytes each, 199 GiB at a 1e-10 s
@@ -152,33 +193,8 @@ class ZMap : public TopographyEvaluator {
     std::vector<std::uint64_t> points(threads, 0), updates(threads, 0);
     auto work = [&](unsigned w) {
       HeightMap& m = maps[w];
-      // Per edge point: its distance from the axis, height and lag (R sin(alpha), -R cos(alpha),
-      // Psi on a ball).
-      std::vector<double> ring, depth, lag;
-      const double tip = tool.min_polar_angle();
-      auto fill = [&](double lo, double hi, int n) {
-        ring.resize(n + 1), depth.resize(n + 1), lag.resize(n + 1);
-        for (int e = 0; e <= n; ++e) {
-          const double alpha = lo + (hi - lo) * e / n;
-          const Vec2 section = tool.section(alpha);
-          ring[e] = section.x();
-          depth[e] = section.y();
-          lag[e] = tool.lag(std::max(alpha, tip));
-        }
-      };
-      if (!windowed(tool)) {
-        const double lo = tool.first_polar_angle();
-        fill(lo, M_PI / 2, std::max(1, static_cast<int>(std::ceil((M_PI / 2 - lo) * speed / dw))));
-        // The flat bottom inside the ring, radially at the lag the edge has at its lowest point.
-        if (tool.has_bottom()) {
-          const int nb = static_cast<int>(std::ceil(tool.ring() / dw));
-          for (int e = 0; e < nb; ++e) {
-            ring.push_back(tool.ring() * e / nb);
-            depth.push_back(depth[0]);
-            lag.push_back(lag[0]);
-          }
-        }
-      }
+      EdgePoints edge(tool);
+      if (!windowed(tool)) edge.whole(speed, dw);
       const std::size_t begin = total_steps * w / threads, end = total_steps * (w + 1) / threads;
       std::size_t p = static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), begin) -
                                                first.begin() - 1);
@@ -186,14 +202,15 @@ class ZMap : public TopographyEvaluator {
         while (s >= first[p + 1]) ++p;
         const double t = static_cast<double>(s - first[p]) * dt;
         const Vec3 centre = path.centre(p, t);
-        if (beyond(centre)) continue;
+        if (reach.beyond(centre)) continue;
         const double spindle = path.spindle_angle(p, t);
         if (windowed(tool)) {
           // The contact's polar angle about the axis: |lambda| for the paper's vertical tool.
           const double lambda = path.contact_angle(p, t);
           const double lo = std::max(0.0, lambda - margin_ * rq.kappa);
           const double hi = std::min(M_PI / 2, lambda + margin_ * rq.kappa);
-          fill(lo, hi, std::max(1, static_cast<int>(std::ceil((hi - lo) * R / dw))));  // Eq. 44
+          edge.fill(lo, hi,
+                    std::max(1, static_cast<int>(std::ceil((hi - lo) * R / dw))));  // Eq. 44
         }
         // A tilted tool's edge points are turned from its frame (identity when vertical).
         const bool vertical = path.pass(p).posture.vertical();
@@ -202,12 +219,12 @@ class ZMap : public TopographyEvaluator {
           const double theta = tool.tooth_angle(tooth) + spindle;
           // Per-edge runout: edge K farther out and higher by K steps (none: no change at all).
           const double out = runout.edge_radial * tooth, up = runout.edge_axial * tooth;
-          for (std::size_t e = 0; e < ring.size(); ++e) {
+          for (std::size_t e = 0; e < edge.ring.size(); ++e) {
             // Same point as tool.edge_point(tooth, alpha, spindle), with per-alpha terms hoisted.
-            const double phi = theta + lag[e];
-            const double rho = per_edge ? ring[e] + out : ring[e];
+            const double phi = theta + edge.lag[e];
+            const double rho = per_edge ? edge.ring[e] + out : edge.ring[e];
             double qx = rho * std::cos(phi), qy = rho * std::sin(phi),
-                   qz = per_edge ? depth[e] + up : depth[e];
+                   qz = per_edge ? edge.depth[e] + up : edge.depth[e];
             if (!vertical) {
               const Vec3 turned = frame * Vec3(qx, qy, qz);
               qx = turned.x(), qy = turned.y(), qz = turned.z();
