@@ -181,24 +181,21 @@ class CentreTable {
       // Within one cubic (every short piece): its least is at an end or where its slope
       // vanishes, exactly (to round-off). Near the tool's axis pieces shrink to nothing, and a
       // margin there would keep the ball's tip, the lowest point near it, from ruling them out.
-      const Cubic& c = cubic_[static_cast<std::size_t>(k)];
-      const double c1 = c[1].z(), c2 = c[2].z(), c3 = c[3].z(), sa = ua - k, sb = ub - k;
-      double low = std::min(za, zb);
-      auto at = [&](double s) {
-        if (s > sa && s < sb) low = std::min(low, c[0].z() + s * (c1 + s * (c2 + s * c3)));
-      };
-      // c1 + 2 c2 s + 3 c3 s^2 = 0
-      if (const double a = 3 * c3, disc = c2 * c2 - a * c1; a != 0 && disc >= 0) {
-        const double q = -(c2 + std::copysign(std::sqrt(disc), c2));
-        if (q != 0) at(c1 / q);
-        at(q / a);
-      } else if (a == 0 && c2 != 0) {
-        at(-c1 / (2 * c2));
-      }
-      return low;
+      return cubic_lowest(cubic_[static_cast<std::size_t>(k)], ua - k, ub - k, std::min(za, zb));
     }
     const double zm = nominal(0.5 * (ta + tb)).z();
     return std::min(za, zb) - std::abs(za + zb - 2 * zm) - 1e-9;
+  }
+
+  // The tabulated nominal centre's least height over the whole table, exactly (to round-off).
+  double nominal_lowest_z() const {
+    double low = INFINITY;
+    for (std::size_t i = 1; i + 2 < knots_.size(); ++i) {
+      const Cubic& c = cubic_[i];
+      low =
+          std::min(low, cubic_lowest(c, 0, 1, std::min(c[0].z(), (c[0] + c[1] + c[2] + c[3]).z())));
+    }
+    return low;
   }
 
   // The box the correction stays in over [ta, tb] and its top speeds there: linear between its
@@ -363,6 +360,23 @@ class CentreTable {
   double t0_ = 0, inv_dt_ = 1, accel_xy_ = 0, accel_ = 0, jerk_xy_ = 0;
   std::vector<Vec3> knots_;
   using Cubic = std::array<Vec3, 4>;  // coefficients of s^0 .. s^3
+  // The least height of cubic c over s in (sa, sb), given `low`, the least at its ends: at an end
+  // or where its slope vanishes, exactly (to round-off).
+  static double cubic_lowest(const Cubic& c, double sa, double sb, double low) {
+    const double c1 = c[1].z(), c2 = c[2].z(), c3 = c[3].z();
+    auto at = [&](double s) {
+      if (s > sa && s < sb) low = std::min(low, c[0].z() + s * (c1 + s * (c2 + s * c3)));
+    };
+    // c1 + 2 c2 s + 3 c3 s^2 = 0
+    if (const double a = 3 * c3, disc = c2 * c2 - a * c1; a != 0 && disc >= 0) {
+      const double q = -(c2 + std::copysign(std::sqrt(disc), c2));
+      if (q != 0) at(c1 / q);
+      at(q / a);
+    } else if (a == 0 && c2 != 0) {
+      at(-c1 / (2 * c2));
+    }
+    return low;
+  }
   std::vector<Cubic> cubic_;
   // The cubic that holds t and t's place s in [0, 1) along it; null beyond the table's cubics.
   const Cubic* piece(double t, double& s) const {

@@ -158,7 +158,9 @@ bool solve_root(const PassageGeometry& geo, int tooth, const Root* from, double 
 }
 
 double floor_steepness(const PassageSetup& s, std::size_t w, double below) {
-  const double depth = s.window[w].lowest_centre - below;
+  // A ringed cutter's tube: its points `depth` below the tube's centre plane are no steeper than
+  // r / depth either (its bottom is flat).
+  const double depth = s.window[w].lowest_centre + s.profile.up() - below;
   return depth > 0 ? std::max(1.0, s.R / depth) : INFINITY;
 }
 
@@ -175,6 +177,25 @@ double floor_steepness(const PassageSetup& s, std::size_t w, double below) {
 // the azimuth are the ball point's in the tool frame, which moves at most L = R / h (h = sqrt(R^2 -
 // rho_plan^2)) times as far as the plan offset does (the lift, lifted_rates): so |g_x| <= L (1/rho
 // + k) and |g_t| >= |omega| - L vxy sqrt(1/rho^2 + k^2). L = 1 when vertical.
+namespace {
+// The same for a ringed cutter, whose axis is vertical (L = 1, rho the plan offset's): the lag's
+// slope in rho at most LagShape's in ln(rho) over rho_lo, and the surface's slope the tube's
+// tan(alpha) (CutterProfile::steepest; 0 on the flat bottom).
+double ringed_fall_rate(const PassageSetup& s, double rho, double moved, double vxy, double vz,
+                        double w, double& reach) {
+  const double rho_lo = rho - moved, rho_hi = rho + moved;
+  if (rho_lo <= 0 || rho_hi >= s.profile.rim_out(kRimFraction)) return INFINITY;
+  const double k = s.lag_shape.over(rho_lo, rho_hi).k1 / rho_lo;
+  if (!std::isfinite(k)) return INFINITY;
+  const double sweep = std::abs(s.omega) - vxy * std::sqrt(1 / (rho_lo * rho_lo) + k * k);
+  if (sweep <= 0.2 * std::abs(s.omega)) return INFINITY;
+  const double bx = (1 / rho_lo + k) / sweep;
+  reach = std::min(kFallReach, w / bx);
+  const double tan_hi = s.profile.steepest(rho_lo, rho_hi);
+  return tan_hi + (vz + tan_hi * vxy) * bx;
+}
+}  // namespace
+
 double fall_rate(const PassageSetup& s, std::size_t p, double t, double rho, double plan,
                  double& reach) {
   // The window either side of t: eight correction steps, or with none (a runout alone) a
@@ -184,6 +205,7 @@ double fall_rate(const PassageSetup& s, std::size_t p, double t, double rho, dou
   const auto [vxy, vz] = s.top_speed(p, t - w, t + w);
   const double moved = vxy * w + kFallReach;  // how far the plan offset can go in the window
   const double plan_hi = plan + moved;
+  if (s.ringed) return ringed_fall_rate(s, rho, moved, vxy, vz, w, reach);
   if (plan_hi >= kRimFraction * s.R) return INFINITY;
   const double sp_hi = plan_hi / s.R, cp_hi = std::sqrt(1 - sp_hi * sp_hi);
   const double L = s.window[p].tilted ? 1 / cp_hi : 1.0;

@@ -24,6 +24,7 @@
 #include <cmath>
 #include <vector>
 
+#include "cutter_profile.hpp"
 #include "topomill/tool_geometry.hpp"
 
 namespace topomill::plugins {
@@ -34,10 +35,15 @@ class LagShape {
     double k1;  // largest |dPsi / d ln rho|
     double k2;  // largest |d^2 Psi / d (ln rho)^2|
     bool kink;  // the range holds the tip radius, where a held lag makes the phase's rate jump
+                // (the loxodrome's; an end mill's corner starts from its bottom's lag at slope 0)
   };
 
-  explicit LagShape(const ToolGeometry& tool)
-      : R_(tool.radius()), tip_(tool.radius() * std::sin(tool.min_polar_angle())) {
+  // The table runs from the axis out to the profile's reach R (the ball's radius; a ringed
+  // cutter's c + r, its slope rho Psi'(alpha) / (r cos alpha): CutterProfile::slope).
+  explicit LagShape(const ToolGeometry& tool) : LagShape(tool, CutterProfile(tool)) {}
+  LagShape(const ToolGeometry& tool, const CutterProfile& profile)
+      : R_(profile.reach()), tip_(profile.tip()), profile_(profile) {
+    jumps_ = tip_ > 0 && slope(tool, tip_) != 0;
     const double width = R_ / kBins;
     k1_.resize(kBins), k2_.resize(kBins), k3_.resize(kBins);
     turned_.assign(kBins + 1, 0.0);
@@ -88,7 +94,7 @@ class LagShape {
   // sparse table of range maxima would give the built-in edges the same bits for more
   // instructions.)
   Bound over(double lo, double hi) const {
-    const bool kink = tip_ > 0 && lo <= tip_ && tip_ <= hi;
+    const bool kink = jumps_ && lo <= tip_ && tip_ <= hi;
     if (hi >= R_) return {INFINITY, INFINITY, kink};  // the rim: no bound
     const std::size_t b = bin(hi);
     return {k1_[b], k2_[b], kink};
@@ -112,6 +118,7 @@ class LagShape {
   }
 
   double slope(const ToolGeometry& tool, double rho) const {
+    if (profile_.ringed()) return rho < R_ ? profile_.slope(tool, rho, profile_.at(rho)) : INFINITY;
     const double s = std::min(rho / R_, 1.0), c = std::sqrt(1 - s * s);
     if (s <= 0 || c <= 0) return s <= 0 ? 0.0 : INFINITY;
     return slope(s, c, tool);
@@ -119,11 +126,15 @@ class LagShape {
 
   // The lag at rho, held below the tip radius as the edge holds it.
   double lag(const ToolGeometry& tool, double rho) const {
+    if (profile_.ringed())
+      return rho < R_ ? profile_.lag(tool, rho, profile_.at(rho)) : tool.lag(M_PI / 2);
     const double s = std::clamp(std::max(rho, tip_) / R_, 0.0, 1.0), c = std::sqrt(1 - s * s);
     return tool.lag_sc(s, c);
   }
 
   double R_, tip_;
+  bool jumps_;  // whether the lag's slope jumps at the tip radius (from the held lag's zero)
+  CutterProfile profile_;
   // k1_[b]: the largest slope over bins 0 to b; k2_ its first derivative's, k3_ its second's.
   std::vector<double> k1_, k2_, k3_;
   std::vector<double> turned_;  // turned_[b]: the lag's variation summed over bins below b

@@ -21,7 +21,7 @@ double node_height_reference(const PassageSetup& s, double x, double y, NodeCoun
     // moved by the correction's whole range) has a single minimum, near the ball's lowest
     // passage over the node.
     const double t_b = geo.bottom_near([&](double t) { return geo.bound(t); }, t0);
-    const double slack = s.wiggles ? 1e-9 : 0.0;   // as the row walk's
+    const double slack = s.wiggles ? kFloorSlack : 0.0;
     if (geo.bound(t_b) - slack >= best) continue;  // this pass cannot lower the node
     best = std::min(best, geo.walk(t_b, roots, counts.passages, best));
     if (s.on_tip_line(p, x, y))

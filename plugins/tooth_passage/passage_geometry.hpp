@@ -18,6 +18,7 @@
 #include <cmath>
 #include <vector>
 
+#include "lift_bounds.hpp"
 #include "monotony.hpp"
 #include "passage_setup.hpp"
 #include "phase_span.hpp"
@@ -88,6 +89,7 @@ class PassageGeometry {
   // the lag's argument: past a tilted tool's equator that folds back, which keeps g continuous
   // (the bounds hold for it), and no edge is there (not over).
   Probe probe(int tooth, double t, const Vec3& c) const {
+    if (s_.ringed) return probe_ringed(tooth, t, c);
     const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
     if (r2 >= s_.R2) return {false, 0, INFINITY, std::sqrt(r2), NAN};
     const double below = std::sqrt(s_.R2 - r2);
@@ -99,6 +101,10 @@ class PassageGeometry {
             wrap(s_.tooth_angle[tooth] + lag + phase_ + s_.omega * t - std::atan2(p.y(), p.x())),
             c.z() - below, rho, lag};
   }
+
+  // A ringed cutter's probe (a vertical axis): its profile over the node
+  // (passage_geometry_ringed.hpp).
+  Probe probe_ringed(int tooth, double t, const Vec3& c) const;
 
   // How far the phase G (unwrapped) turns from probe a at ta to probe b at tb, exactly, where
   // the axis cannot come round the node between: wherever the centre stays in a convex region
@@ -131,6 +137,7 @@ class PassageGeometry {
     const double dx = x_ - c.x(), dy = y_ - c.y();
     const double ex = dx - std::clamp(dx, lo.x(), hi.x()), ey = dy - std::clamp(dy, lo.y(), hi.y());
     const double r2 = ex * ex + ey * ey, z = c.z() + lo.z();
+    if (s_.ringed) return z + s_.profile.up() - s_.profile.hull_depth(std::sqrt(r2));
     return r2 < s_.R2 ? z - std::sqrt(s_.R2 - r2) : z + (std::sqrt(r2) - s_.R);
   }
 
@@ -150,10 +157,12 @@ class PassageGeometry {
     return std::sqrt(p.x() * p.x() + p.y() * p.y());
   }
 
-  // The ball's height over the node, continued past its rim so that it stays unimodal.
+  // The ball's height over the node, continued past its rim so that it stays unimodal (a ringed
+  // cutter's hull: CutterProfile).
   double envelope(double t) const {
     const Vec3 c = table_(t);
     const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
+    if (s_.ringed) return c.z() + s_.profile.up() - s_.profile.hull_depth(std::sqrt(r2));
     return r2 < s_.R2 ? c.z() - std::sqrt(s_.R2 - r2) : c.z() + (std::sqrt(r2) - s_.R);
   }
 
@@ -204,11 +213,15 @@ class PassageGeometry {
     return mid;
   }
   // The bottom of `f` within the travel of a ball's diameter either side of t0 (the
-  // reference's window); of the envelope when no `f` is given.
+  // reference's window); of the envelope when no `f` is given. A ringed cutter's hull is flat
+  // over its bottom, where the golden section stops anywhere: t0 (the level time, the axis's
+  // closest approach) where it is as low, so that the walks start where the node is farthest
+  // from the rim, and any point of a flat bottom is one.
   template <class F>
   double bottom_near(F f, double t0) const {
-    const double span = 2 * s_.R / s_.speed;
-    return bottom(f, std::max(t_lo_, t0 - span), std::min(t_hi_, t0 + span));
+    const double span = 2 * s_.profile.reach() / s_.speed;
+    const double t = bottom(f, std::max(t_lo_, t0 - span), std::min(t_hi_, t0 + span));
+    return s_.ringed && within(t0) && f(t0) <= f(t) ? t0 : t;
   }
   double bottom_near(double t0) const {
     return bottom_near([this](double t) { return envelope(t); }, t0);
@@ -250,18 +263,10 @@ class PassageGeometry {
   // tilted tool's (the ball point over the node in the tool frame, lifted from the plan).
   Span plan_rates(const Sample& a, const Sample& b, const PlanRegion& r) const;
   Span lifted_rates(const Sample& a, const Sample& b, const PlanRegion& r) const;
-  // The lift P(q) = (q, -sqrt(R^2 - |q|^2)) of a plan offset q that stays within `plan` of the
-  // centre and moves at most at v with acceleration at most A: |P'| <= L v with L = R / hz,
-  // hz = sqrt(R^2 - plan^2) (|P'|^2 = |q'|^2 + (q . q')^2 / (R^2 - |q|^2)), and |P''| <= accel
-  // (the same differentiated once more); a fixed rotation into the tool frame keeps both. hz is
-  // 0 off the ball, and the bounds then meaningless.
-  // tests/plugins/tooth_passage/passage_geometry_phase_test.cpp samples them.
-  struct Lift {
-    double hz, L, accel;
-  };
+  // The ball's lift from the plan into the tool frame (lift_bounds.hpp).
+  using Lift = BallLift;
   static Lift lift_bounds(double R, double plan, double v, double A) {
-    const double hz = plan < R ? std::sqrt(R * R - plan * plan) : 0.0;
-    return {hz, R / hz, A + (v * v + plan * A) / hz + plan * plan * v * v / (hz * hz * hz)};
+    return ball_lift_bounds(R, plan, v, A);
   }
   // The ball point over the node relative to the centre in the tool frame, and its velocity, for
   // the centre at c moving at v (plan offset q = node - c) at time t (the frame's, which may
@@ -425,6 +430,8 @@ class PassageGeometry {
               double below = INFINITY, Crossing* lowest = nullptr) const;
 
  private:
+  // How far from the axis the lag's slope is bounded: kRimFraction of the tube from its centre.
+  double rim() const { return s_.ringed ? s_.profile.rim_out(kRimFraction) : kRimFraction * s_.R; }
   // |(x, y)| without hypot's care for overflow, which costs here and is not needed (mm and mm/s).
   static double norm(double x, double y) { return std::sqrt(x * x + y * y); }
   // One call of crossings_in: its pieces and how each is settled (passage_geometry_crossings.cpp).
@@ -453,7 +460,7 @@ class PassageGeometry {
   // the axis, by the reasons that hold all along the window (monotony).
   bool monotone_by_distance(double rho, double reach) const {
     const double v = s_.window[win_].plan_line.speed, out = rho + v * reach;
-    if (out > kRimFraction * s_.R) return false;
+    if (out > rim()) return false;
     return far_from_line() || clears_line(out) ||
            (lined() && kRoom * line_rates(out).first < std::abs(s_.omega));
   }
@@ -489,3 +496,5 @@ class PassageGeometry {
 };
 
 }  // namespace topomill::plugins
+
+#include "passage_geometry_ringed.hpp"

@@ -246,7 +246,7 @@ bool PassageGeometry::clears_line(double out) const {
 std::pair<double, double> PassageGeometry::line_rates(double out) const {
   const PassageSetup::PlanLine& l = s_.window[win_].plan_line;
   const double moment = l.along_lo * line_gap_ - l.across_hi * out;
-  if (!(moment > 0) || !(out < s_.R)) return {INFINITY, INFINITY};
+  if (!(moment > 0) || !(out < s_.profile.reach())) return {INFINITY, INFINITY};
   const double k1 = s_.lag_shape.slope_to(out), S = std::sqrt(1 + k1 * k1);
   const double scale = l.speed_hi * l.speed_hi / moment;
   const double slows = 0.5 * (with_spindle_ ? S - 1 : S + 1) * scale;

@@ -86,15 +86,17 @@ struct PassageGeometry::Halving {
     if (std::isnan(e.rate)) e.rate = geo.rate(e.at, dv);
     return e.rate;
   }
-  // The ball's lowest possible height over the node on a piece.
+  // The ball's lowest possible height over the node on a piece (a ringed cutter's hull's).
   double floor_of(const Piece& p, const Span& sp) const {
-    if (sp.plan_lo >= geo.s_.R) return INFINITY;
+    const CutterProfile& f = geo.s_.profile;
+    if (sp.plan_lo >= f.reach()) return INFINITY;
     const double ta = p.lo.at.t, tb = p.hi.at.t;
     // The nominal centre's lowest, and the correction's (its box's, where span read it).
     const double shift = !std::isnan(sp.box_z_lo) ? sp.box_z_lo
                          : geo.table_.corrected() ? geo.table_.correction_bounds(ta, tb).lo.z()
                                                   : 0.0;
     const double z = geo.table_.nominal_lowest_z(ta, tb, p.lo.n.z(), p.hi.n.z()) + shift;
+    if (geo.s_.ringed) return z + f.up() - f.deepest(sp.plan_lo);
     return z - std::sqrt(geo.s_.R2 - sp.plan_lo * sp.plan_lo);
   }
   void found(int tooth, double t) {

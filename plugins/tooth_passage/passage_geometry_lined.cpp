@@ -48,7 +48,7 @@
 namespace topomill::plugins {
 
 double PassageGeometry::lined_convexity(double rho_hi, double* k2) const {
-  if (!lined() || !(rho_hi < kRimFraction * s_.R)) return -INFINITY;
+  if (!lined() || !(rho_hi < rim())) return -INFINITY;
   const PassageSetup::PlanLine& line = s_.window[win_].plan_line;
   const double w = std::abs(s_.omega), rho_lo = line_gap_;
   const LagShape::Bound k = s_.lag_shape.over(rho_lo, rho_hi);
@@ -80,19 +80,25 @@ struct PassageGeometry::LinedZone {
     Vec3 c, v, acc;
     if (!geo.table_.nominal_jet(t, c, v, acc)) return false;
     const double qx = geo.x_ - c.x(), qy = geo.y_ - c.y(), r2 = qx * qx + qy * qy;
-    const double sin_a = std::sqrt(r2) / s.R, cos_a = std::sqrt(1 - sin_a * sin_a);
-    const double psi = s.lag_shape.slope(sin_a, cos_a, *s.tool);
     const double D = qx * v.x() + qy * v.y(), M = qx * v.y() - qy * v.x();
+    double psi, rise;
+    if (s.ringed) {
+      // The hull's rise: its depth sqrt(r^2 - e^2) (e = rho - c > 0; flat inside the ring) falls
+      // at e rho' / depth, rho' = -D / rho (e is `out` here).
+      const double rho = std::sqrt(r2);
+      const CutterProfile::Point p = s.profile.at(rho);
+      psi = s.profile.slope(*s.tool, rho, p);
+      const double out = rho - s.profile.ring();
+      rise = v.z() - (out > 0 && p.on ? out * D / (rho * p.depth) : 0.0);
+    } else {
+      const double sin_a = std::sqrt(r2) / s.R, cos_a = std::sqrt(1 - sin_a * sin_a);
+      psi = s.lag_shape.slope(sin_a, cos_a, *s.tool);
+      rise = v.z() - D / (s.R * cos_a);
+    }
     const double dD = qx * acc.x() + qy * acc.y() - (v.x() * v.x() + v.y() * v.y());
     const double slope = sense * (-2 * s.omega * D - psi * dD + (qx * acc.y() - qy * acc.x()));
     const double bend = k2 * D * D / r2;  // |Psi_uu D^2 / rho^2|
-    e = {t,
-         sense * (s.omega * r2 - psi * D + M),
-         slope - bend,
-         slope + bend,
-         v.z() - D / (s.R * cos_a),
-         r2,
-         c};
+    e = {t, sense * (s.omega * r2 - psi * D + M), slope - bend, slope + bend, rise, r2, c};
     return true;
   }
   // A step ends about F / |F'| before its zero; over that the phase turns by at most about

@@ -61,6 +61,15 @@ bool PassageGeometry::land(const Sample& at, double r, double lag_rate, double& 
     return false;
   const Vec3 c = at.c + v * dt;
   const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
+  if (s_.ringed) {  // a vertical axis: the profile over the node
+    const double rho = std::sqrt(r2);
+    if (!(rho < s_.profile.reach())) return false;
+    const CutterProfile::Point p = s_.profile.at(rho);
+    t = t1;
+    q = {p.on && rho >= rho_lo_ && rho <= rho_hi_, 0.0,
+         p.on ? c.z() - p.depth + s_.profile.up() : INFINITY, rho, q.lag + lag_rate * dt};
+    return true;
+  }
   if (!(r2 < s_.R2)) return false;
   const double below = std::sqrt(s_.R2 - r2);
   // The ball point through the frame map (land() is refused on a turning frame: it is fixed).
@@ -87,6 +96,13 @@ double PassageGeometry::rate(const Sample& at, const Vec3& dv, double* lag_rate)
   // u' = (p . p') / r2 (u = ln rho), az' = (p x p') / r2.
   const double du = (p.x() * dp.x() + p.y() * dp.y()) / r2,
                daz = (p.x() * dp.y() - p.y() * dp.x()) / r2;
+  if (s_.ringed) {  // a vertical axis: the lag's slope from the profile
+    const double rho = std::sqrt(r2);
+    if (!(rho < s_.profile.reach())) return NAN;
+    const double lag = s_.profile.slope(*s_.tool, rho, s_.profile.at(rho)) * du;
+    if (lag_rate) *lag_rate = lag;
+    return s_.omega + lag - daz;
+  }
   const double sin_a = std::sqrt(r2) / s_.R;
   if (sin_a >= 1) return NAN;
   // The polar angle's cosine: the ball point's depth in the tool frame (from the sine where the

@@ -42,34 +42,40 @@ std::vector<PassageSetup::Extent> windows_of(const ToolPath& path, std::size_t p
 }
 }  // namespace
 
-PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iterations_)
+PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iterations_, int edge)
     : path(rq.path),
       tool(rq.tool),
       parallel(false),
+      profile(edge < 0 ? CutterProfile(*rq.tool)
+                       : CutterProfile(*rq.tool, edge * rq.path->runout().edge_radial,
+                                       edge * rq.path->runout().edge_axial)),
+      ringed(profile.ringed()),
+      windowed(rq.tool->ring() == 0 && !rq.path->runout().per_edge()),
       R(rq.tool->radius()),
       R2(R * R),
       omega(rq.path->spindle_rate()),
       speed(INFINITY),
       rev(kTwoPi / std::abs(omega)),
-      period(rev / rq.tool->teeth()),
-      reach(R + rq.path->max_correction()),
+      period(rev / (edge < 0 ? rq.tool->teeth() : 1)),
+      reach(profile.reach() + rq.path->max_correction()),
       margin(margin_),
       kappa(rq.kappa),
       iterations(iterations_),
-      teeth(rq.tool->teeth()),
+      teeth(edge < 0 ? rq.tool->teeth() : 1),
       along_y(rq.path->feed_axis() == ToolPath::FeedAxis::Y),
       stop(rq.stop),
-      lag_shape(*rq.tool),
+      lag_shape(*rq.tool, profile),
       wiggles(rq.path->corrected() || rq.path->runout().offset > 0),
       runout(rq.path->runout().offset) {
-  for (int j = 0; j < teeth; ++j) tooth_angle.push_back(tool->tooth_angle(j));
+  for (int j = 0; j < teeth; ++j) tooth_angle.push_back(tool->tooth_angle(edge < 0 ? j : edge));
   sin_tip = std::sin(tool->min_polar_angle());
   lag_tip = tool->lag(tool->min_polar_angle());
   std::vector<Extent> extents;
   for (std::size_t p = 0; p < path->passes(); ++p)
     for (const Extent& w : windows_of(*path, p)) extents.push_back(w);
   parallel = path->feed_axis() != ToolPath::FeedAxis::None && extents.size() == path->passes();
-  const double k1 = lag_shape.slope_to(kRimFraction * R);  // the lag's slope over the ball
+  // The lag's slope over the cutter.
+  const double k1 = lag_shape.slope_to(ringed ? profile.rim_out(kRimFraction) : kRimFraction * R);
   gap_lag = std::sqrt(1 + k1 * k1);
   window.reserve(extents.size());
   std::shared_ptr<const CorrectionIndex> index;  // the pass's, shared by its windows
@@ -119,6 +125,7 @@ void PassageSetup::add_window(const Extent& where,
   win.shift_lo = whole.lo - Vec3(runout, runout, 0),
   win.shift_hi = whole.hi + Vec3(runout, runout, 0);
   win.lowest_centre = win.centre.lowest_z(t_lo, t_hi);
+  win.lowest_nominal = win.centre.nominal_lowest_z();
   win.nominal_speed = win.centre.top_speed();
   bound_window(win, whole.lo, whole.hi);
 }
@@ -127,7 +134,8 @@ void PassageSetup::bound_window(Window& win, const Vec3& lo, const Vec3& hi) {
   const std::size_t p = win.pass;
   const double t_lo = win.t_lo, t_hi = win.t_hi;
   const double v = top_speed(window.size() - 1, -INFINITY, INFINITY).first, half = 0.5 * rev;
-  win.gap_rho = {kRoom * (v * half + gap_lag * v / std::abs(omega)), kRimFraction * R - v * half};
+  win.gap_rho = {kRoom * (v * half + gap_lag * v / std::abs(omega)),
+                 (ringed ? profile.rim_out(kRimFraction) : kRimFraction * R) - v * half};
   // The line from the window's nominal start to its end in plan; the correction's plan offset
   // at most its box's farthest corner.
   const Vec3 a = path->nominal_centre(p, t_lo), b = path->nominal_centre(p, t_hi);
@@ -163,10 +171,13 @@ void PassageSetup::near(double x, double y,
     if (parallel) {
       const double across = std::abs((along_y ? x : y) - window[w].line);
       if (across < reach) out.push_back({across, w});
-    } else if (const double d = window[w].segment.distance(x, y) - window[w].segment.slack; d < R) {
-      // Every crossing lies on the ball, no lower than its lowest centre less the sphere's
-      // depth at the least distance the centre comes to in plan.
-      out.push_back({window[w].lowest_centre - std::sqrt(R2 - std::pow(std::max(d, 0.0), 2)), w});
+    } else if (const double d = window[w].segment.distance(x, y) - window[w].segment.slack;
+               d < profile.reach()) {
+      // Every crossing lies on the cutter, no lower than its lowest centre less its depth at the
+      // least distance the centre comes to in plan.
+      const double depth = ringed ? profile.deepest(std::max(d, 0.0))
+                                  : std::sqrt(R2 - std::pow(std::max(d, 0.0), 2));
+      out.push_back({window[w].lowest_centre + profile.up() - depth, w});
     }
   }
   std::sort(out.begin(), out.end());
@@ -296,6 +307,9 @@ std::pair<double, double> PassageSetup::contact_radii(std::size_t w, double t) c
   const double lambda = path->contact_angle(window[w].pass, t);
   const double lo = std::max(0.0, lambda - margin * kappa);
   const double hi = std::min(M_PI / 2, lambda + margin * kappa);
+  // A ringed cutter has no contact window (the paper's CATW is the ball's): all of its edge.
+  // Nor has any edge a per-edge runout moved (zmap's choice: ZMap::windowed).
+  if (!windowed) return {0.0, INFINITY};
   return {R * std::sin(lo), R * std::sin(hi)};
 }
 

@@ -32,6 +32,10 @@ constexpr double kBottomTolerance = 0.05;
 // where the phase is monotone a tooth's next passage is at least half a revolution on.
 constexpr double kSamePassage = 0.25;
 
+// A corrected envelope's floor is trusted to this much less than it reads (round-off in the
+// correction's box and the centre's table).
+constexpr double kFloorSlack = 1e-9;  // mm
+
 // The tip is a point of every edge, and the phase jumps by pi (not through zero) where the axis
 // passes over a node: a node the axis passes within kOnAxis of is cut by the tip then.
 constexpr double kOnAxis = 1e-9;  // mm
@@ -42,7 +46,10 @@ inline double wrap(double a) {
 }
 
 struct PassageSetup {
-  PassageSetup(const EvaluationRequest& rq, double margin, int iterations);
+  // Every tooth of the request's cutter; or, with `edge` >= 0, that tooth alone on the profile a
+  // per-edge runout gives it (ToolPath::Runout: its ring `edge` eps_r farther out, `edge` eps_a
+  // higher), walked as a one-tooth cutter.
+  PassageSetup(const EvaluationRequest& rq, double margin, int iterations, int edge = -1);
 
   // The spindle axis's segment in plan from a window's start to its end, and how far the centre
   // strays from it (the runout and the correction in plan): nodes farther than R more than that
@@ -109,7 +116,8 @@ struct PassageSetup {
     // The range of the correction over the window and the runout's (zero when ideal): wherever
     // the centre is, it is within [shift_lo, shift_hi] of the spindle axis's nominal one.
     Vec3 shift_lo = Vec3::Zero(), shift_hi = Vec3::Zero();
-    double lowest_centre = 0;  // a lower bound of the corrected centre's height
+    double lowest_centre = 0;   // a lower bound of the corrected centre's height
+    double lowest_nominal = 0;  // the tabulated nominal centre's least height, exactly
     // The nominal centre's top speeds in plan and along z (mm/s).
     std::pair<double, double> nominal_speed{0.0, 0.0};
     // The distances from the axis [lo, hi] within which a crossing's next of the same tooth is at
@@ -125,10 +133,16 @@ struct PassageSetup {
   // Whether every window is a whole pass along one of X or Y (the path's feed axis): then a
   // window's `line` orders them across, which the row sweep's stopping rule needs.
   bool parallel;
+  // The cutter over a node (a vertical axis); R is its tube's radius (the ball's), `ringed`
+  // whether it has a ring, where the probes read `profile` rather than the sphere.
+  CutterProfile profile;
+  bool ringed;
+  bool windowed;  // whether the contact window (kappa) applies: the ball, its edges unmoved
   double R, R2, omega, speed;  // speed: the slowest feed in plan along a window (mm/s)
   double rev;                  // one spindle revolution, s
   double period;               // one tooth period, s
-  double reach;                // R plus the largest correction: farther across, a pass cannot touch
+  double reach;  // the cutter's reach plus the largest correction: farther across, a pass cannot
+                 // touch
   double margin, kappa;
   int iterations, teeth;
   bool along_y;  // parallel: the passes feed along Y (else along X)

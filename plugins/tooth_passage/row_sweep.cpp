@@ -127,6 +127,16 @@ RowSweep::PassResult RowSweep::pass_height(std::size_t p, double x, double y, do
   double tip = NAN;
   auto tip_cut = [&] { return std::isnan(tip) ? tip = tip_height(geo, t0) : tip; };
   double t_b = NAN;
+  if (!s_.profile.surface_is_hull()) {
+    // Heights along the pass may have two minima (an insert's inner side, an edge moved off the
+    // axis): the reference walk, which needs only the hull's bound.
+    t_b = geo.bottom_near([&](double t) { return geo.bound(t); }, t0());
+    if (std::isnan(t_b)) return out;
+    if (geo.bound(t_b) - (s_.wiggles ? kFloorSlack : 0.0) >= best)
+      return out.can_lower = false, out;
+    out.height = std::min(walk_reference(geo, st, t_b, best, counts, out), tip_cut());
+    return out;
+  }
   if (!s_.wiggles) {
     if (ideal_too_high(geo, st, best, t0, t_b)) return out.can_lower = false, out;
     if (std::isnan(t_b)) return out;
@@ -158,7 +168,7 @@ RowSweep::PassResult RowSweep::pass_height(std::size_t p, double x, double y, do
   }
   t_b = bottom([&](double t) { return geo.floor_envelope(t); }, geo, st, x, t0);
   if (std::isnan(t_b)) return out;
-  if (const double low = geo.floor_envelope(t_b) - 1e-9; low >= best)
+  if (const double low = geo.floor_envelope(t_b) - kFloorSlack; low >= best)
     return st.floor = low, st.floor_x = x, out.can_lower = false, out;
   bool irregular = false;
   double h = INFINITY;
@@ -185,6 +195,7 @@ bool RowSweep::ideal_too_high(const PassageGeometry& geo, PassState& st, double 
   // at fixed t), so a pass found too high stays too high for a while without being looked at
   // again (twice the slope, for the slope's own change over up to a fiftieth of the radius).
   const double x = geo.x(), moved = std::abs(x - st.floor_x);
+  // (A ringed cutter's slope changes over its tube's radius, as the ball's over its own.)
   if (moved < 0.02 * s_.R && st.floor - st.floor_slope * moved >= best) return true;
   t_b = bottom([&](double t) { return geo.envelope(t); }, geo, st, x, t0);
   if (std::isnan(t_b)) return false;
@@ -195,6 +206,14 @@ bool RowSweep::ideal_too_high(const PassageGeometry& geo, PassState& st, double 
   st.floor = low, st.floor_x = x;
   st.floor_slope = r2 < 0.81 * s_.R2 ? 2 * std::abs(dx) / std::sqrt(s_.R2 - r2)
                                      : INFINITY;  // near the rim: no bound, look each time
+  if (s_.ringed) {
+    // The tube's: d/dx of -sqrt(r^2 - e^2) is e / sqrt(r^2 - e^2) dx / rho (e = rho - c; zero on
+    // the bottom).
+    const double rho = std::sqrt(r2), e = rho - s_.profile.ring();
+    st.floor_slope = e <= 0           ? 0.0
+                     : e < 0.9 * s_.R ? 2 * e * std::abs(dx) / (rho * std::sqrt(s_.R2 - e * e))
+                                      : INFINITY;
+  }
   return true;
 }
 
@@ -204,6 +223,11 @@ bool RowSweep::ideal_too_high(const PassageGeometry& geo, PassState& st, double 
 double RowSweep::reference(const PassageGeometry& geo, PassState& st, double t_b, double best,
                            NodeCounts& counts, PassResult& out) {
   ++counts.fallbacks, route_.fallback = true;
+  return walk_reference(geo, st, t_b, best, counts, out);
+}
+
+double RowSweep::walk_reference(const PassageGeometry& geo, PassState& st, double t_b, double best,
+                                NodeCounts& counts, PassResult& out) {
   for (auto& r : st.roots) r.clear();
   PassageGeometry::Crossing low{-1, 0.0, {}};
   const double h = geo.walk(t_b, roots_, counts.passages, best, &low);
@@ -226,7 +250,15 @@ double RowSweep::tip_height(const PassageGeometry& geo, T0 t0) const {
 template <class F, class T0>
 double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x, T0 t0) {
   double t_b = NAN;
-  if (st.have_bottom) {
+  // A ringed cutter's ideal envelope is flat over its bottom, where the parabola below finds no
+  // curvature: the last node's bottom is this one's where the envelope is as low there as the
+  // window's lowest centre allows (no lower anywhere).
+  if (st.have_bottom && s_.ringed && !s_.wiggles) {
+    const double tp = st.tb + st.tb_rate * (x - st.tb_x);
+    const double floor = s_.window[geo.window()].lowest_nominal + s_.profile.up() - s_.R;
+    if (geo.within(tp) && f(tp) <= floor) t_b = tp;
+  }
+  if (std::isnan(t_b) && st.have_bottom) {
     const double tp = st.tb + st.tb_rate * (x - st.tb_x), w = 0.1 * s_.period;
     const double fm = f(tp - w), f0 = f(tp), fp = f(tp + w);
     const double curvature = fp - 2 * f0 + fm;

@@ -84,6 +84,10 @@ class RowSweep {
   // The reference walk for the node and pass, seeding the next node from its lowest passage.
   double reference(const PassageGeometry& geo, PassState& st, double t_b, double best,
                    NodeCounts& counts, PassResult& out);
+  // The same walk without counting it a fallback: every pass of a cutter whose surface is not its
+  // hull (CutterProfile::surface_is_hull).
+  double walk_reference(const PassageGeometry& geo, PassState& st, double t_b, double best,
+                        NodeCounts& counts, PassResult& out);
   // t0() gives the pass's level time (computed when first asked).
   template <class F, class T0>
   double bottom(F f, const PassageGeometry& geo, PassState& st, double x, T0 t0);

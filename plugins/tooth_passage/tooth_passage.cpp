@@ -53,6 +53,15 @@ class ToothPassage : public TopographyEvaluator {
   bool follows(const ToolPath::Posture&) const override { return true; }
   // Any path: a bent pass is taken as straight windows (PassageSetup::Window).
   bool follows_curves() const override { return true; }
+  // The ball at any posture; every cutter whose section is its tube's circle (all but an insert
+  // with an axial rake), and per-edge runout (each edge walked as a cutter of its own), with a
+  // vertical axis: the profile over a node is then a function of its distance from the axis
+  // (cutter_profile.hpp).
+  bool follows_cutter(const ToolGeometry& tool, const ToolPath::Runout& runout,
+                      const ToolPath::Posture& posture) const override {
+    if (tool.ring() == 0 && !runout.per_edge()) return true;
+    return posture.vertical() && CutterProfile::describes(tool);
+  }
 
   // Memory: the centre tables, about 4 KB a pass (measured: 30 MB for 8 600 passes at a 0.1 um
   // step-over). Time, for the row walk on one thread (measured on the paper's lambda = 30 deg
@@ -68,7 +77,12 @@ class ToothPassage : public TopographyEvaluator {
     c.bytes = 4096.0 * windows;
     c.bytes_key = "cutting.stepover";
     if (walk_ != Walk::Row) return c;
-    const double reach = 2 * rq.tool->radius() * std::sin(std::min(rq.kappa, M_PI / 2));
+    // A ringed cutter has no contact window: all of its width reaches. Each edge of a per-edge
+    // runout is walked alone.
+    const double reach = rq.tool->ring() > 0
+                             ? 2 * rq.tool->reach()
+                             : 2 * rq.tool->radius() * std::sin(std::min(rq.kappa, M_PI / 2));
+    const double edges = rq.path->runout().per_edge() ? rq.tool->teeth() : 1;
     double ae = 0;  // the step between the first two passes, along the step direction
     if (path.passes() > 1)
       ae = path.feed_axis() == ToolPath::FeedAxis::Y
@@ -76,54 +90,21 @@ class ToothPassage : public TopographyEvaluator {
                : std::abs(path.pass(1).y_start - path.pass(0).y_start);
     const double node = 1.5e-6;
     const double passes = ae > 0 ? 12e-9 * reach / ae : 0;
-    c.seconds = static_cast<double>(g.nx) * static_cast<double>(g.ny) * (node + passes);
+    c.seconds = edges * static_cast<double>(g.nx) * static_cast<double>(g.ny) * (node + passes);
     c.seconds_key = node >= passes ? "region.spacing" : "cutting.stepover";
     return c;
   }
 
+  // With a per-edge runout each edge is a cutter of its own (its ring and height moved:
+  // PassageSetup's `edge`), walked alone; the map keeps the lowest of all.
   void evaluate(const EvaluationRequest& rq, HeightMap& map, WorkCounts& counts) const override {
-    const PassageSetup setup(rq, margin_, iterations_);
-    // The scan samples a tooth period 256 times, and a correction's linear piece 4 times.
-    double scan_step = setup.period / 256;
-    for (std::size_t p = 0; p < rq.path->passes(); ++p)
-      if (const double dt = rq.path->correction_step(p); dt > 0)
-        scan_step = std::min(scan_step, dt / 4);
-    const Grid& g = map.grid;
-    const unsigned threads = std::max(1u, std::min<unsigned>(rq.threads, 64));
-    std::vector<NodeCounts> done(threads);
-    std::vector<double> xs(g.nx);
-    for (std::size_t i = 0; i < g.nx; ++i) xs[i] = g.x(i);
-    std::atomic<std::size_t> next_row{0};
-    auto work = [&](unsigned w) {
-      NodeCounts mine;  // counted here, not in done[w]: neighbours in one cache line would
-                        // make the threads take turns
-      RowSweep sweep(setup);
-      std::vector<std::pair<double, std::size_t>> order;
-      std::vector<PassageGeometry::Crossing> roots;
-      // Rows are handed out one at a time, so that a thread slowed by anything else on the
-      // machine takes fewer; each row is computed alone, so the bits do not depend on who.
-      for (std::size_t j = next_row++; j < g.ny && !rq.stopped(); j = next_row++) {
-        double* z = &map.at(0, j);
-        if (walk_ == Walk::Row) {
-          sweep.row(g.y(j), xs, z, mine);
-        } else {
-          for (std::size_t i = 0; i < g.nx; ++i) {
-            const double low = walk_ == Walk::Node
-                                   ? node_height_reference(setup, xs[i], g.y(j), mine, order, roots)
-                                   : node_height_scan(setup, xs[i], g.y(j), scan_step, mine);
-            if (low < z[i]) z[i] = low, ++mine.updates;
-          }
-        }
-        if (w == 0 && rq.progress) rq.progress(static_cast<double>(j) / g.ny);
-      }
-      done[w] = mine;
-    };
-    std::vector<std::thread> pool;
-    for (unsigned w = 1; w < threads; ++w) pool.emplace_back(work, w);
-    work(0);
-    for (auto& t : pool) t.join();
+    const bool per_edge = rq.path->runout().per_edge();
+    const int edges = per_edge ? rq.tool->teeth() : 1;
     NodeCounts total;
-    for (const auto& d : done) total += d;
+    for (int edge = 0; edge < edges && !rq.stopped(); ++edge)
+      total += sweep(PassageSetup(rq, margin_, iterations_, per_edge ? edge : -1), rq, map,
+                     static_cast<double>(edge) / edges, 1.0 / edges);
+    const Grid& g = map.grid;
     counts["nodes"] = g.size();
     counts["tooth_passages"] = total.passages;
     counts["updates"] = total.updates;
@@ -137,6 +118,54 @@ class ToothPassage : public TopographyEvaluator {
   }
 
  private:
+  // One setup's walks over every row, lowering the map where they go lower; the progress reported
+  // runs from `done` over `share` of the whole.
+  NodeCounts sweep(const PassageSetup& setup, const EvaluationRequest& rq, HeightMap& map,
+                   double done, double share) const {
+    // The scan samples a tooth period 256 times, and a correction's linear piece 4 times.
+    double scan_step = setup.rev / rq.tool->teeth() / 256;
+    for (std::size_t p = 0; p < rq.path->passes(); ++p)
+      if (const double dt = rq.path->correction_step(p); dt > 0)
+        scan_step = std::min(scan_step, dt / 4);
+    const Grid& g = map.grid;
+    const unsigned threads = std::max(1u, std::min<unsigned>(rq.threads, 64));
+    std::vector<NodeCounts> done_by(threads);
+    std::vector<double> xs(g.nx);
+    for (std::size_t i = 0; i < g.nx; ++i) xs[i] = g.x(i);
+    std::atomic<std::size_t> next_row{0};
+    auto work = [&](unsigned w) {
+      NodeCounts mine;  // counted here, not in done_by[w]: neighbours in one cache line would
+                        // make the threads take turns
+      RowSweep row_sweep(setup);
+      std::vector<std::pair<double, std::size_t>> order;
+      std::vector<PassageGeometry::Crossing> roots;
+      // Rows are handed out one at a time, so that a thread slowed by anything else on the
+      // machine takes fewer; each row is computed alone, so the bits do not depend on who.
+      for (std::size_t j = next_row++; j < g.ny && !rq.stopped(); j = next_row++) {
+        double* z = &map.at(0, j);
+        if (walk_ == Walk::Row) {
+          row_sweep.row(g.y(j), xs, z, mine);
+        } else {
+          for (std::size_t i = 0; i < g.nx; ++i) {
+            const double low = walk_ == Walk::Node
+                                   ? node_height_reference(setup, xs[i], g.y(j), mine, order, roots)
+                                   : node_height_scan(setup, xs[i], g.y(j), scan_step, mine);
+            if (low < z[i]) z[i] = low, ++mine.updates;
+          }
+        }
+        if (w == 0 && rq.progress) rq.progress(done + share * static_cast<double>(j) / g.ny);
+      }
+      done_by[w] = mine;
+    };
+    std::vector<std::thread> pool;
+    for (unsigned w = 1; w < threads; ++w) pool.emplace_back(work, w);
+    work(0);
+    for (auto& t : pool) t.join();
+    NodeCounts total;
+    for (const auto& d : done_by) total += d;
+    return total;
+  }
+
   double margin_;
   int iterations_;
   enum class Walk { Row, Node, Scan } walk_;  // the schema's choice, read once

@@ -82,7 +82,8 @@ class ZMap : public TopographyEvaluator {
   // the edge points per tooth from Eq. 44 over the widened contact range at the steepest lambda.
   bool follows(const ToolPath::Posture&) const override { return true; }  // any: it turns points
   bool follows_curves() const override { return true; }  // any: it moves them with the centre
-  bool follows_cutter(const ToolGeometry&, const ToolPath::Runout&) const override {
+  bool follows_cutter(const ToolGeometry&, const ToolPath::Runout&,
+                      const ToolPath::Posture&) const override {
     return true;  // any: its points are the edges'
   }
 

@@ -82,76 +82,144 @@ double oracle(const ToolGeometry& tool, const ToolPath& path, std::size_t p, dou
 
 using Values = std::vector<std::pair<std::string, double>>;
 
-// A vertical tool on one pass along +Y through x = 0 over a plate (the next 50 mm away), the
-// patch centred x across it; the Z-map at half its usual time step.
-std::string plate(const std::string& plugin, const Values& tool, const std::string& extra,
-                  double x) {
+// A vertical tool on one pass along +Y through x = 0 over a plate inclined by `angle` (the next
+// pass 50 mm away), the patch centred x across it; the evaluator's table last (`evaluator`).
+std::string plate(const std::string& plugin, const Values& tool, const std::string& extra, double x,
+                  const std::string& evaluator, double angle = 0) {
   std::ostringstream s;
   s.precision(17);
   s << "[tool]\nplugin = '" << plugin << "'\n";
   for (const auto& [key, value] : tool) s << key << " = " << value << "\n";
-  s << "[workpiece]\nplugin = 'inclined_plane'\nangle = 0.0\n"
+  s << "[workpiece]\nplugin = 'inclined_plane'\nangle = " << angle << "\n"
     << "[cutting]\nspindle_speed = 4000\nfeed_per_tooth = 0.1\ndepth_of_cut = 0.1\n"
     << "stepover = 50.0\nspindle_direction = 'ccw'\n[region]\ncentre = [" << x
-    << ", 0.0]\nsize = [0.04, 0.04]\nspacing = 0.004\n[evaluator]\nplugin = 'zmap'\n"
-    << "time_step_fraction = 0.5\n"
-    << extra;
+    << ", 0.0]\nsize = [0.04, 0.04]\nspacing = 0.004\n"
+    << extra << "[evaluator]\n"
+    << evaluator;
   return s.str();
+}
+// The Z-map at half its usual time step.
+const char* const kZmap = "plugin = 'zmap'\ntime_step_fraction = 0.5\n";
+
+struct Case {
+  const char* name;
+  std::string plugin;
+  Values tool;
+  std::string extra;
+  double x;          // the patch's centre across the pass
+  double angle = 0;  // the plate's inclination along the feed (deg)
+};
+std::vector<Case> cases() {
+  return {Case{"bull-nose, on its corner",
+               "bull_nose",
+               {{"diameter", 2}, {"corner_radius", 0.5}},
+               "",
+               0.7},
+          Case{"bull-nose, over its bottom's rim",
+               "bull_nose",
+               {{"diameter", 2}, {"corner_radius", 0.5}},
+               "",
+               0.5},
+          Case{"flat end with a corner radius, per-edge runout",
+               "flat_end",
+               {{"diameter", 2}, {"corner_radius", 0.2}, {"teeth", 3}},
+               "[runout]\nedge_radial_step = 0.004\nedge_axial_step = 0.001\n",
+               0.85},
+          Case{"round inserts, inner side, per-edge runout",
+               "round_insert",
+               {{"diameter", 1}, {"insert_radius", 0.5}, {"radial_rake", 5}},
+               "[runout]\nedge_radial_step = -0.006\nedge_axial_step = 0.0005\n",
+               0.2},
+          Case{"round inserts, outer side",
+               "round_insert",
+               {{"diameter", 1}, {"insert_radius", 0.5}},
+               "",
+               0.65},
+          Case{"ball end, per-edge runout",
+               "ball_end_constant_lead",
+               {{"radius", 1}},
+               "[runout]\nedge_radial_step = 0.003\nedge_axial_step = -0.001\n",
+               0.3}};
+}
+
+// Where only the exact evaluator is held to the brute force (the Z-map's cell error aside): the
+// axis over the nodes, a sharp corner, and the centre moved by vibration and deflection (the
+// brute force reads the corrected centre, ToolPath::centre).
+const char* const kEffects =
+    "[force]\nplugin = 'armarego'\n[vibration]\nplugin = 'modal_exact'\n"
+    "modes = [{axis = 'x', frequency = 785.0, damping = 0.0246, stiffness = 1.74e7},"
+    " {axis = 'y', frequency = 800.0, damping = 0.0263, stiffness = 1.71e7},"
+    " {axis = 'z', frequency = 753.0, damping = 0.0215, stiffness = 1.21e7}]\n"
+    "[deflection]\nplugin = 'cantilever'\noverhang = 6.0\n";
+std::vector<Case> hard_cases() {
+  return {Case{"flat end, sharp corner, the axis over the nodes",
+               "flat_end",
+               {{"diameter", 2}, {"corner_radius", 0}, {"teeth", 2}},
+               "",
+               0.0},
+          Case{"flat end on a plane inclined along the feed, the axis over the nodes",
+               "flat_end",
+               {{"diameter", 2}, {"corner_radius", 0.2}, {"teeth", 3}},
+               "",
+               0.0,
+               20.0},
+          Case{"flat end, the axis over the nodes, vibration and deflection",
+               "flat_end",
+               {{"diameter", 2}, {"corner_radius", 0.1}, {"teeth", 4}},
+               kEffects,
+               0.0},
+          Case{"bull-nose over its bottom's rim, vibration and deflection",
+               "bull_nose",
+               {{"diameter", 2}, {"corner_radius", 0.5}, {"teeth", 3}},
+               kEffects,
+               0.5},
+          Case{"bull-nose, on its corner, vibration and deflection",
+               "bull_nose",
+               {{"diameter", 2}, {"corner_radius", 0.5}, {"teeth", 2}},
+               kEffects,
+               0.75},
+          Case{"bull-nose on a small ring, steep helix, next to the axis",
+               "bull_nose",
+               {{"diameter", 2}, {"corner_radius", 0.98}, {"helix_angle", 60}, {"teeth", 2}},
+               "",
+               0.03},
+          Case{"round inserts reaching the axis, over it",
+               "round_insert",
+               {{"diameter", 1}, {"insert_radius", 0.5}, {"teeth", 3}},
+               "",
+               0.0},
+          Case{"round inserts, inner side, vibration and per-edge runout",
+               "round_insert",
+               {{"diameter", 1}, {"insert_radius", 0.5}},
+               std::string(kEffects) +
+                   "[runout]\nedge_radial_step = 0.005\nedge_axial_step = -0.0005\n",
+               0.25}};
+}
+
+// The exact heights over the scene's patch, from the pass through x = 0.
+std::vector<double> exact_patch(const topomill::RunResult& r, const Case& c) {
+  const auto tool = testing::make_model<ToolGeometry>(c.plugin, c.tool);
+  const ToolPath& path = *r.layout.path;
+  std::size_t pass = path.passes();
+  for (std::size_t p = 0; p < path.passes(); ++p)
+    if (path.pass(p).x == 0) pass = p;
+  REQUIRE(pass < path.passes());
+  const auto& g = r.raw.grid;
+  std::vector<double> exact(g.nx * g.ny);
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i)
+      exact[j * g.nx + i] = oracle(*tool, path, pass, g.x0 + static_cast<double>(i) * g.dx,
+                                   g.y0 + static_cast<double>(j) * g.dy);
+  return exact;
 }
 }  // namespace
 
 TEST_CASE("the Z-map cuts every cutter where an exact brute force does", "[cutter][oracle]") {
-  struct Case {
-    const char* name;
-    std::string plugin;
-    Values tool;
-    std::string extra;
-    double x;  // the patch's centre across the pass
-  };
-  const Case c = GENERATE(Case{"bull-nose, on its corner",
-                               "bull_nose",
-                               {{"diameter", 2}, {"corner_radius", 0.5}},
-                               "",
-                               0.7},
-                          Case{"bull-nose, over its bottom's rim",
-                               "bull_nose",
-                               {{"diameter", 2}, {"corner_radius", 0.5}},
-                               "",
-                               0.5},
-                          Case{"flat end with a corner radius, per-edge runout",
-                               "flat_end",
-                               {{"diameter", 2}, {"corner_radius", 0.2}, {"teeth", 3}},
-                               "[runout]\nedge_radial_step = 0.004\nedge_axial_step = 0.001\n",
-                               0.85},
-                          Case{"round inserts, inner side, per-edge runout",
-                               "round_insert",
-                               {{"diameter", 1}, {"insert_radius", 0.5}, {"radial_rake", 5}},
-                               "[runout]\nedge_radial_step = -0.006\nedge_axial_step = 0.0005\n",
-                               0.2},
-                          Case{"round inserts, outer side",
-                               "round_insert",
-                               {{"diameter", 1}, {"insert_radius", 0.5}},
-                               "",
-                               0.65},
-                          Case{"ball end, per-edge runout",
-                               "ball_end_constant_lead",
-                               {{"radius", 1}},
-                               "[runout]\nedge_radial_step = 0.003\nedge_axial_step = -0.001\n",
-                               0.3});
+  const Case c = GENERATE(from_range(cases()));
   DYNAMIC_SECTION(c.name) {
-    const auto r = run_scene(plate(c.plugin, c.tool, c.extra, c.x));
-    const auto tool = testing::make_model<ToolGeometry>(c.plugin, c.tool);
-    const ToolPath& path = *r.layout.path;
-    std::size_t pass = path.passes();
-    for (std::size_t p = 0; p < path.passes(); ++p)
-      if (path.pass(p).x == 0) pass = p;
-    REQUIRE(pass < path.passes());
+    const auto r = run_scene(plate(c.plugin, c.tool, c.extra, c.x, kZmap, c.angle));
+    const std::vector<double> exact = exact_patch(r, c);
     const auto& g = r.raw.grid;
-    std::vector<double> exact(g.nx * g.ny);
-    for (std::size_t j = 0; j < g.ny; ++j)
-      for (std::size_t i = 0; i < g.nx; ++i)
-        exact[j * g.nx + i] = oracle(*tool, path, pass, g.x0 + static_cast<double>(i) * g.dx,
-                                     g.y0 + static_cast<double>(j) * g.dy);
     // The Z-map puts an edge point on the nearest node: off by the slope times up to half a
     // diagonal, the slope taken from the exact heights' steepest step to a neighbour.
     double worst = 0;
@@ -172,5 +240,26 @@ TEST_CASE("the Z-map cuts every cutter where an exact brute force does", "[cutte
         CHECK(off <= kSlack * step + 1e-6);
       }
     WARN(c.name << ": worst Z-map error " << worst << " of the step to a neighbour");
+  }
+}
+
+TEST_CASE("tooth_passage cuts every cutter where an exact brute force does, to 1 nm",
+          "[cutter][oracle]") {
+  const Case c = GENERATE(from_range(cases()), from_range(hard_cases()));
+  const std::string walk = GENERATE(as<std::string>{}, "row", "node");
+  DYNAMIC_SECTION(c.name << ", walk " << walk) {
+    const auto r = run_scene(plate(c.plugin, c.tool, c.extra, c.x,
+                                   "plugin = 'tooth_passage'\nwalk = '" + walk + "'\n", c.angle));
+    const std::vector<double> exact = exact_patch(r, c);
+    const auto& g = r.raw.grid;
+    for (std::size_t j = 0; j < g.ny; ++j)
+      for (std::size_t i = 0; i < g.nx; ++i) {
+        // Not above the plate (the map starts there).
+        const double top = -(g.y0 + static_cast<double>(j) * g.dy) * std::tan(c.angle * M_PI / 180);
+        const double z = std::min(exact[j * g.nx + i], top);
+        INFO("node (" << i << ", " << j << "): tooth_passage " << r.raw.at(i, j) << ", exact "
+                      << z);
+        CHECK(std::abs(r.raw.at(i, j) - z) < 1e-6);
+      }
   }
 }

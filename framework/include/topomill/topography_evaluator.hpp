@@ -60,10 +60,13 @@ class TOPOMILL_API TopographyEvaluator : public Model {
   // speed (ToolPath::feed_axis() None: cutter-location data, radial or spiral passes). By
   // default not, and the core refuses such a path for it.
   virtual bool follows_curves() const { return false; }
-  // Whether evaluate() follows this cutter with this runout. By default the ball end (ring 0)
-  // without per-edge runout, so that an evaluator written for the ball is never handed another
-  // cutter: the core refuses any other for it.
-  virtual bool follows_cutter(const ToolGeometry& tool, const ToolPath::Runout& runout) const {
+  // Whether evaluate() follows this cutter with this runout, at this posture (one that follows()
+  // accepts). By default the ball end (ring 0) without per-edge runout at any posture, so that an
+  // evaluator written for the ball is never handed another cutter: the core refuses any other
+  // for it.
+  virtual bool follows_cutter(const ToolGeometry& tool, const ToolPath::Runout& runout,
+                              const ToolPath::Posture& posture) const {
+    (void)posture;
     return tool.ring() == 0 && !runout.per_edge();
   }
 

@@ -34,6 +34,42 @@ std::shared_ptr<T> make(const Scene& scene, const PluginCatalog& catalog,
   log_info(table + ": " + st.plugin + " from " + st.model->library->path);
   return catalog.create<T>(*st.model, st.params);
 }
+
+// Each pass's posture, refused where the evaluator does not follow it, or not with this cutter
+// (a ringed cutter or a per-edge runout), at the key that sets it.
+void check_postures(const Scene& scene, const Prepared& out, const std::string& evaluator) {
+  const SlotTable& path = scene.slot("path");
+  for (std::size_t p = 0; p < out.layout.path->passes(); ++p) {
+    const ToolPath::Posture& q = out.layout.path->pass(p).posture;
+    const bool posture = out.evaluator->follows(q);
+    if (posture && out.evaluator->follows_cutter(*out.tool, out.layout.path->runout(), q)) continue;
+    const std::string key = q.given ? "file" : q.normal ? "posture" : q.tilt != 0 ? "tilt" : "lead";
+    const std::string what =
+        q.given ? std::string(q.turns ? "a tool axis that turns along a pass"
+                                      : "the tilted tool axis the data give") +
+                      " (pass " + std::to_string(p + 1) + " of the cutter-location data)"
+                : "the tool's posture " +
+                      std::string(q.normal ? "along the surface normal (turning with it over the "
+                                             "curvature)"
+                                           : "fixed") +
+                      " with lead " + format_number(q.lead * 180 / M_PI) + " deg and tilt " +
+                      format_number(q.tilt * 180 / M_PI) + " deg";
+    const std::string expected =
+        !posture  ? q.given ? "a fixed axis over each pass (its README says which)"
+                            : "a posture it follows (its README says which)"
+        : q.given ? "a vertical axis over each pass"
+                  : "a vertical tool (lead and tilt 0)";
+    const std::string cutter =
+        posture ? " with the cutter '" + scene.slot("tool").plugin + "'" +
+                      (out.layout.path->runout().per_edge() ? " and its per-edge runout" : "")
+                : "";
+    throw InputError(path.params.has(key) ? path.params.where(key) : path.where, "path." + key,
+                     "the evaluator '" + evaluator + "' does not follow " + what + cutter +
+                         ": expected " + expected +
+                         ", or evaluator.plugin = \"zmap\", which "
+                         "follows any");
+  }
+}
 }  // namespace
 
 EvaluationRequest evaluation_request(const Prepared& m, unsigned threads) {
@@ -69,12 +105,13 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
                          "' follows straight passes along X or Y only, all one way at one speed, "
                          "and this path has others (radial, spiral or bent passes, or a change of "
                          "feed): expected evaluator.plugin = \"zmap\", which follows any");
-  if (!out.evaluator->follows_cutter(*out.tool, ToolPath::Runout{}))
+  const ToolPath::Posture vertical;
+  if (!out.evaluator->follows_cutter(*out.tool, ToolPath::Runout{}, vertical))
     throw InputError(scene.slot("tool").where, "tool",
                      "the evaluator '" + evaluator + "' does not follow the cutter '" +
                          scene.slot("tool").plugin +
                          "': expected evaluator.plugin = \"zmap\", which follows any cutter");
-  if (!out.evaluator->follows_cutter(*out.tool, out.layout.path->runout())) {
+  if (!out.evaluator->follows_cutter(*out.tool, out.layout.path->runout(), vertical)) {
     const Params& runout = scene.table("runout");
     const std::string key =
         runout.number("edge_radial_step") != 0 ? "edge_radial_step" : "edge_axial_step";
@@ -83,31 +120,7 @@ Prepared prepare(const Scene& scene, const PluginCatalog& catalog, unsigned thre
                          "' does not follow a per-edge runout: expected evaluator.plugin = "
                          "\"zmap\", which follows any");
   }
-  for (std::size_t p = 0; p < out.layout.path->passes(); ++p) {
-    const ToolPath::Posture& q = out.layout.path->pass(p).posture;
-    if (out.evaluator->follows(q)) continue;
-    const SlotTable& path = path_slot;
-    if (q.given)
-      throw InputError(path.params.has("file") ? path.params.where("file") : path.where,
-                       "path.file",
-                       "the evaluator '" + evaluator + "' does not follow " +
-                           (q.turns ? "a tool axis that turns along a pass"
-                                    : "the tilted tool axis the data give") +
-                           " (pass " + std::to_string(p + 1) +
-                           " of the cutter-location data): expected a fixed axis over each pass "
-                           "(its README says which), or evaluator.plugin = \"zmap\", which "
-                           "follows any");
-    const std::string key = q.normal ? "posture" : q.tilt != 0 ? "tilt" : "lead";
-    throw InputError(path.params.has(key) ? path.params.where(key) : path.where, "path." + key,
-                     "the evaluator '" + evaluator + "' does not follow the tool's posture " +
-                         (q.normal ? "along the surface normal (turning with it over the "
-                                     "curvature)"
-                                   : "fixed") +
-                         " with lead " + format_number(q.lead * 180 / M_PI) + " deg and tilt " +
-                         format_number(q.tilt * 180 / M_PI) +
-                         " deg: expected a posture it follows (its README says which), or "
-                         "evaluator.plugin = \"zmap\", which follows any");
-  }
+  check_postures(scene, out, evaluator);
   const EvaluationCost cost = evaluation_cost(out, threads);
   check_memory(scene, out, cost, threads, available_memory());
   check_duration(scene, out, cost, threads);

@@ -1,0 +1,100 @@
+// tooth_passage's cutter profile, against the tool's own section and lag: the depth over a node
+// at the section's distance is the section's height, wherever an edge is; the hull is never
+// shallower than the surface and never deepens outwards; the lag's slope in ln(rho) is the lag's
+// central difference; the steepness is the depth's central difference; and the profile says it
+// describes a tool exactly when the section is the tube's circle.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "support/builtin_models.hpp"
+#include "tooth_passage/cutter_profile.hpp"
+
+using topomill::ToolGeometry;
+using topomill::plugins::CutterProfile;
+
+namespace {
+using Values = std::vector<std::pair<std::string, double>>;
+struct Tool {
+  const char* plugin;
+  Values values;
+};
+std::vector<Tool> tools() {
+  return {{"bull_nose", {{"diameter", 6}, {"corner_radius", 1}, {"helix_angle", 40}}},
+          {"flat_end", {{"diameter", 4}, {"corner_radius", 0.3}, {"helix_angle", 20}}},
+          {"round_insert", {{"diameter", 10}, {"insert_radius", 3}, {"radial_rake", 4}}},
+          {"ball_end_loxodrome", {{"radius", 2}, {"helix_angle", 30}}}};
+}
+}  // namespace
+
+TEST_CASE("the profile's depth is the section's height wherever an edge is", "[tooth_passage]") {
+  const Tool t = GENERATE(from_range(tools()));
+  const auto tool = testing::make_model<ToolGeometry>(t.plugin, t.values);
+  const double out = GENERATE(0.0, 0.05), up = GENERATE(0.0, -0.002);
+  const CutterProfile f(*tool, out, up);
+  INFO(t.plugin << ", out " << out << ", up " << up);
+  CHECK(f.up() == up);
+  const double a0 = tool->first_polar_angle();
+  for (int k = 1; k < 64; ++k) {
+    const double a = a0 + (M_PI / 2 - a0) * k / 64.0;
+    const double rho = tool->section(a).x() + out;
+    const CutterProfile::Point p = f.at(rho);
+    INFO("alpha " << a);
+    REQUIRE(p.on);
+    CHECK(p.depth == Approx(-tool->section(a).y()).margin(1e-12));
+    CHECK(p.sin_a == Approx(std::sin(a)).margin(1e-12));
+    CHECK(f.hull_depth(rho) >= p.depth - 1e-15);
+  }
+  // Past the reach nothing; inside the ring the bottom's depth r, or no edge (an insert's hole,
+  // a ball's ring moved out).
+  CHECK_FALSE(f.at(f.reach() * 1.0001).on);
+  if (tool->has_bottom()) {
+    CHECK(f.at(0.5 * tool->ring()).depth == tool->radius());
+    CHECK(f.at(0.5 * tool->ring()).on);
+    CHECK(f.at(0.5 * out).on == (out == 0));  // moved out, the edge leaves the axis
+  } else if (f.start() > 0) {
+    CHECK_FALSE(f.at(0.999 * f.start()).on);
+  }
+  // The hull never deepens outwards, and is continuous: between samples dr apart it rises by at
+  // most the tube's sagitta over dr, sqrt(2 r dr) (the rim's), or dr past the reach.
+  const double dr = 1.2 * f.reach() / 4000;
+  double last = INFINITY, worst_deepening = 0, worst_step = 0;
+  for (int k = 0; k <= 4000; ++k) {
+    const double d = f.hull_depth(dr * k);
+    if (k > 0)
+      worst_deepening = std::max(worst_deepening, d - last),
+      worst_step = std::max(worst_step, (last - d) / (std::sqrt(2 * f.tube() * dr) + dr));
+    last = d;
+  }
+  CHECK(worst_deepening <= 1e-15);
+  CHECK(worst_step <= 1.0);
+}
+
+TEST_CASE("the profile's lag slope and steepness are the central differences", "[tooth_passage]") {
+  const Tool t = GENERATE(from_range(tools()));
+  const auto tool = testing::make_model<ToolGeometry>(t.plugin, t.values);
+  const CutterProfile f(*tool);
+  INFO(t.plugin);
+  const double h = 1e-6;
+  for (int k = 1; k < 40; ++k) {
+    // Over the edge away from the tip radius and the rim, where both are smooth.
+    const double rho = f.tip() + (f.rim_out(0.9) - f.tip()) * k / 40.0;
+    auto lag = [&](double r) { return f.lag(*tool, r, f.at(r)); };
+    const double d_lag = (lag(rho * std::exp(h)) - lag(rho * std::exp(-h))) / (2 * h);
+    INFO("rho " << rho);
+    CHECK(f.slope(*tool, rho, f.at(rho)) == Approx(d_lag).margin(1e-6));
+    const double d_depth = (f.at(rho + h).depth - f.at(rho - h).depth) / (2 * h);
+    CHECK(f.steepest(rho, rho) == Approx(std::abs(d_depth)).margin(1e-6));
+  }
+  // A held lag has no slope: the bottom, the loxodrome's tip.
+  if (f.tip() > 0) CHECK(f.slope(*tool, 0.5 * f.tip(), f.at(0.5 * f.tip())) == 0);
+}
+
+TEST_CASE("the profile describes a tool whose section is its tube's circle", "[tooth_passage]") {
+  for (const Tool& t : tools())
+    CHECK(CutterProfile::describes(*testing::make_model<ToolGeometry>(t.plugin, t.values)));
+  CHECK_FALSE(CutterProfile::describes(*testing::make_model<ToolGeometry>(
+      "round_insert", {{"diameter", 10}, {"insert_radius", 3}, {"axial_rake", 5}})));
+}
