@@ -34,7 +34,7 @@ class CutterProfile {
         up_(up),
         bottom_(tool.has_bottom()),
         inner_(tool.first_polar_angle() < 0),
-        start_(inner_ ? std::max(0.0, c_ + r_ * std::sin(tool.first_polar_angle()))
+        start_(inner_    ? std::max(0.0, c_ + r_ * std::sin(tool.first_polar_angle()))
                : bottom_ ? out
                          : c_),
         tip_(inner_ ? start_ : c_ + r_ * std::sin(tool.min_polar_angle())),
@@ -69,6 +69,10 @@ class CutterProfile {
   // an end mill whose bottom reaches the axis. Elsewhere (an insert's inner side and hole, an edge
   // a per-edge runout moved off the axis) the heights along a pass may have two minima.
   bool surface_is_hull() const { return !ringed() || (bottom_ && start_ == 0); }
+  // Whether, without a bottom, the depth on the tube's two sides is the surface wherever an edge
+  // is: then on either side of the axis's closest approach to a node (the distance monotone) the
+  // heights have one minimum, and split_depth() bounds them (an insert, a ball's edge moved out).
+  bool splits() const { return ringed() && !bottom_; }
 
   // The surface over a node at rho: whether an edge is there, its depth below the tube's centre
   // plane, and the section's sin and cos of alpha (0 and 1 on the bottom).
@@ -102,6 +106,12 @@ class CutterProfile {
     const double s = e / r_;  // (as at() takes it: the same bits where both apply)
     return s < 1 ? r_ * std::sqrt(1 - s * s) : r_ - e;
   }
+  // The tube's depth continued past both rims, falling at slope 1 (the sphere's continuation):
+  // the surface's where an edge is, below it (above the cutter) elsewhere, and unimodal in rho.
+  double split_depth(double rho) const {
+    const double e = rho - c_, s = e / r_;
+    return std::abs(s) < 1 ? r_ * std::sqrt(1 - s * s) : r_ - std::abs(e);
+  }
   // The deepest the hull is over distances at least rho_lo.
   double deepest(double rho_lo) const { return hull_depth(rho_lo); }
 
@@ -111,9 +121,7 @@ class CutterProfile {
   double rim_in(double fraction) const { return inner_ ? c_ - fraction * r_ : -INFINITY; }
   // The steepest the surface's height is over rho within [lo, hi] (tan of alpha: 0 on the
   // bottom), given both within the rims.
-  double steepest(double lo, double hi) const {
-    return std::max(steepness(lo), steepness(hi));
-  }
+  double steepest(double lo, double hi) const { return std::max(steepness(lo), steepness(hi)); }
 
  private:
   double steepness(double rho) const {

@@ -28,9 +28,12 @@ namespace topomill::plugins {
 
 class PassageGeometry {
  public:
-  // The node (x, y) under window w (PassageSetup::Window) of a pass.
+  // The node (x, y) under window w (PassageSetup::Window) of a pass; with `part` given, under
+  // its times [part.first, part.second] only, bounded by the split depth (a side of the axis's
+  // closest approach: CutterProfile::splits).
   PassageGeometry(const PassageSetup& s, std::size_t w, double x, double y, double rho_lo,
-                  double rho_hi)
+                  double rho_hi, std::pair<double, double> part = {-INFINITY, INFINITY},
+                  bool split = false)
       : s_(s),
         table_(s.window[w].centre),
         win_(w),
@@ -40,8 +43,9 @@ class PassageGeometry {
         rho_lo_(rho_lo),
         rho_hi_(rho_hi),
         phase_(s.path->pass(src_).phase),
-        t_lo_(s.window[w].t_lo),
-        t_hi_(s.window[w].t_hi),
+        t_lo_(std::max(s.window[w].t_lo, part.first)),
+        t_hi_(std::min(s.window[w].t_hi, part.second)),
+        split_(split),
         tilted_(s.window[w].tilted),
         turning_(s.window[w].turn.on),
         to_tool_(s.window[w].to_tool) {
@@ -62,6 +66,7 @@ class PassageGeometry {
   double t_lo() const { return t_lo_; }
   double t_hi() const { return t_hi_; }
   bool within(double t) const { return t >= t_lo_ && t <= t_hi_; }
+  bool split() const { return split_; }
 
   // Where the axis is at t and how fast it moves: what probe, span and rate read of the path,
   // taken once for each time (a subdivision's ends are shared by two pieces).
@@ -162,7 +167,11 @@ class PassageGeometry {
   double envelope(double t) const {
     const Vec3 c = table_(t);
     const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
-    if (s_.ringed) return c.z() + s_.profile.up() - s_.profile.hull_depth(std::sqrt(r2));
+    if (s_.ringed) {
+      const double rho = std::sqrt(r2);
+      return c.z() + s_.profile.up() -
+             (split_ ? s_.profile.split_depth(rho) : s_.profile.hull_depth(rho));
+    }
     return r2 < s_.R2 ? c.z() - std::sqrt(s_.R2 - r2) : c.z() + (std::sqrt(r2) - s_.R);
   }
 
@@ -198,31 +207,14 @@ class PassageGeometry {
   // height at the end, not a bracket's width inside, is the window's lowest (the walks' first
   // test, whether a window can lower the node at all, reads it).
   template <class F>
-  double bottom(F f, double a, double b) const {
-    const double lo = a, hi = b, ratio = 0.5 * (std::sqrt(5.0) - 1);
-    double u = b - ratio * (b - a), v = a + ratio * (b - a), fu = f(u), fv = f(v);
-    while (b - a > kBottomTolerance * s_.period) {
-      if (fu < fv)
-        b = v, v = u, fv = fu, u = b - ratio * (b - a), fu = f(u);
-      else
-        a = u, u = v, fu = fv, v = a + ratio * (b - a), fv = f(v);
-    }
-    const double mid = 0.5 * (a + b), f_mid = f(mid);
-    if (a == lo && f(lo) < f_mid) return lo;
-    if (b == hi && f(hi) < f_mid) return hi;
-    return mid;
-  }
+  double bottom(F f, double a, double b) const;
   // The bottom of `f` within the travel of a ball's diameter either side of t0 (the
   // reference's window); of the envelope when no `f` is given. A ringed cutter's hull is flat
   // over its bottom, where the golden section stops anywhere: t0 (the level time, the axis's
   // closest approach) where it is as low, so that the walks start where the node is farthest
-  // from the rim, and any point of a flat bottom is one.
+  // from the rim, and any point of a flat bottom is one. (Both in passage_geometry_bottom.hpp.)
   template <class F>
-  double bottom_near(F f, double t0) const {
-    const double span = 2 * s_.profile.reach() / s_.speed;
-    const double t = bottom(f, std::max(t_lo_, t0 - span), std::min(t_hi_, t0 + span));
-    return s_.ringed && within(t0) && f(t0) <= f(t) ? t0 : t;
-  }
+  double bottom_near(F f, double t0) const;
   double bottom_near(double t0) const {
     return bottom_near([this](double t) { return envelope(t); }, t0);
   }
@@ -487,6 +479,7 @@ class PassageGeometry {
   const CentreTable& table_;
   std::size_t win_, src_;  // the window, and its pass
   double x_, y_, rho_lo_, rho_hi_, phase_, t_lo_, t_hi_;
+  bool split_;  // a side of the closest approach, bounded by the split depth (constructor)
   bool tilted_, turning_;
   Eigen::Matrix3d to_tool_;  // the tool frame's transpose when tilted (at t = 0 when turning)
   double line_gap_;  // at most the axis's least distance from the node along the pass (PlanLine)
@@ -497,4 +490,5 @@ class PassageGeometry {
 
 }  // namespace topomill::plugins
 
+#include "passage_geometry_bottom.hpp"
 #include "passage_geometry_ringed.hpp"

@@ -6,12 +6,13 @@
 namespace topomill::plugins {
 
 RowSweep::RowSweep(const PassageSetup& s)
-    : s_(s), by_line_(s.window.size()), state_(s.window.size()) {
+    : s_(s), by_line_(s.window.size()), state_(s.window.size()), far_side_(s.window.size()) {
   std::iota(by_line_.begin(), by_line_.end(), std::size_t{0});
   if (s.parallel)
     std::sort(by_line_.begin(), by_line_.end(),
               [&](std::size_t a, std::size_t b) { return s.window[a].line < s.window[b].line; });
   for (auto& st : state_) st.roots.resize(static_cast<std::size_t>(s.teeth));
+  for (auto& st : far_side_) st.roots.resize(static_cast<std::size_t>(s.teeth));
   corrected_.later.resize(static_cast<std::size_t>(s.teeth));
   corrected_.before.resize(static_cast<std::size_t>(s.teeth));
 }
@@ -19,13 +20,14 @@ RowSweep::RowSweep(const PassageSetup& s)
 void RowSweep::row(double y, const std::vector<double>& xs, double* z, NodeCounts& counts) {
   winner_ = Winner{};
   winner_line_ = -1;
-  for (auto& st : state_) {
-    st.active = st.have_bottom = false;
-    st.wait = st.waited = 0;
-    st.floor_x = NAN;
-    st.stop[0] = st.stop[1] = NAN;
-    for (auto& r : st.roots) r.clear();
-  }
+  for (auto* sides : {&state_, &far_side_})
+    for (auto& st : *sides) {
+      st.active = st.have_bottom = false;
+      st.wait = st.waited = 0;
+      st.floor_x = NAN;
+      st.stop[0] = st.stop[1] = NAN;
+      for (auto& r : st.roots) r.clear();
+    }
   for (std::size_t i = 0; i < xs.size(); ++i) {
     if (s_.stopped()) return;  // the map is discarded
     route_ = Route{};
@@ -127,6 +129,8 @@ RowSweep::PassResult RowSweep::pass_height(std::size_t p, double x, double y, do
   double tip = NAN;
   auto tip_cut = [&] { return std::isnan(tip) ? tip = tip_height(geo, t0) : tip; };
   double t_b = NAN;
+  if (!s_.profile.surface_is_hull() && !s_.wiggles && s_.profile.splits())
+    return split_height(p, x, y, best, counts, t0());
   if (!s_.profile.surface_is_hull()) {
     // Heights along the pass may have two minima (an insert's inner side, an edge moved off the
     // axis): the reference walk, which needs only the hull's bound.
@@ -183,6 +187,37 @@ RowSweep::PassResult RowSweep::pass_height(std::size_t p, double x, double y, do
   if (s_.stopped()) return out;  // a walk cut short is not irregular: the map is discarded
   if (irregular) h = reference(geo, st, t_b, best, counts, out);
   out.height = std::min(h, tip_cut());
+  return out;
+}
+
+RowSweep::PassResult RowSweep::split_height(std::size_t p, double x, double y, double best,
+                                            NodeCounts& counts, double t_m) {
+  PassResult out;
+  if (std::isnan(t_m)) return out;
+  out.can_lower = false;
+  // The sides overlap by a millionth of a tooth period: a crossing at t_m itself, solved from
+  // either side, lands within round-off (1e-9 / omega) of it on one side or the other. Over so
+  // short a piece the bound moves by far less than round-off.
+  const double overlap = 1e-6 * s_.period;
+  for (int side = 0; side < 2; ++side) {
+    PassState& st = side ? far_side_[p] : state_[p];
+    const PassageGeometry geo(s_, p, x, y, state_[p].rho_lo, state_[p].rho_hi,
+                              side ? std::pair<double, double>{t_m - overlap, INFINITY}
+                                   : std::pair<double, double>{-INFINITY, t_m + overlap},
+                              true);
+    if (!(geo.t_hi() > geo.t_lo())) continue;
+    double t_b = NAN;
+    if (ideal_too_high(
+            geo, st, best, [t_m] { return t_m; }, t_b))
+      continue;
+    out.can_lower = true;
+    if (std::isnan(t_b)) continue;
+    IdealFollow follow(geo, st.roots, ideal_, counts);
+    const double h = follow.run(t_b, best);
+    route_.exact = route_.exact || follow.exact_used();
+    if (s_.stopped()) return out;  // the map is discarded
+    out.height = std::min(out.height, h), best = std::min(best, h);
+  }
   return out;
 }
 

@@ -74,6 +74,11 @@ class RowSweep {
   };
 
   PassResult pass_height(std::size_t p, double x, double y, double best, NodeCounts& counts);
+  // An ideal pass of a cutter whose profile splits (CutterProfile::splits): each side of its
+  // level time t_m (the axis's closest approach) followed as a window of its own, whose heights
+  // have one minimum.
+  PassResult split_height(std::size_t p, double x, double y, double best, NodeCounts& counts,
+                          double t_m);
   // The passes outwards from the last node's winner (parallel passes) or every window near the
   // node (others): the node's best height.
   double node_height(double x, double y, NodeCounts& counts);
@@ -102,6 +107,7 @@ class RowSweep {
   std::vector<std::size_t> by_line_;                  // parallel: passes sorted by their line
   std::vector<std::pair<double, std::size_t>> near_;  // else: the windows near the node
   std::vector<PassState> state_;
+  std::vector<PassState> far_side_;  // a split pass's side after its level time (split_height)
   IdealFollow::Scratch ideal_;
   CorrectedFollow::Scratch corrected_;
   std::vector<PassageGeometry::Crossing> roots_;  // the reference walk's

@@ -61,12 +61,23 @@ TEST_CASE("a bull-nose leaves the cusp of its corner where the bottoms' strips p
   // meet at ae / 2: the cusp is r - sqrt(r^2 - (ae / 2 - c)^2) when ae > 2c, none when less.
   const std::string tool =
       "plugin = 'bull_nose'\ndiameter = 4.0\ncorner_radius = 1.0\nhelix_angle = 30.0";
+  // The Z-map within 2 % (its nearest node); tooth_passage, exact at the nodes, within 1e-5 (1.3
+  // nm): what the rows leave, 0.45 nm here (of the cusp line's nodes 0.01 mm apart, the best
+  // has its lowest passage a few micrometres along the feed from the axis's closest approach),
+  // and never below the closed form, which is the lowest any passage reaches there.
+  using Run = std::pair<std::string, double>;
+  const Run run = GENERATE(Run{"zmap", 0.02}, Run{"tooth_passage", 1e-5});
+  const std::string& evaluator = run.first;
+  const double tolerance = run.second;
+  const std::vector<std::string> set{"evaluator.plugin=" + evaluator};
+  INFO(evaluator);
   SECTION("ae 3 mm: the corners meet") {
-    const auto r = run_scene(plate_scene(tool, 0.1, 0.3, 3.0, 3.0, 0.2, 0.01));
-    CHECK(cusp_um(r.raw) == Approx(1e3 * circle_rise(1.0, 0.5)).epsilon(0.02));  // 133.97 um
+    const auto r = run_scene(plate_scene(tool, 0.1, 0.3, 3.0, 3.0, 0.2, 0.01), set);
+    CHECK(cusp_um(r.raw) == Approx(1e3 * circle_rise(1.0, 0.5)).epsilon(tolerance));  // 133.97 um
+    CHECK(cusp_um(r.raw) >= 1e3 * circle_rise(1.0, 0.5) - 1e-6);
   }
   SECTION("ae 1.5 mm: the bottoms overlap, and the plate is flat") {
-    const auto r = run_scene(plate_scene(tool, 0.1, 0.3, 1.5, 1.5, 0.2, 0.01));
+    const auto r = run_scene(plate_scene(tool, 0.1, 0.3, 1.5, 1.5, 0.2, 0.01), set);
     CHECK(cusp_um(r.raw) == Approx(0).margin(1e-9));
   }
 }
