@@ -124,13 +124,13 @@ RowSweep::PassResult RowSweep::pass_height(std::size_t p, double x, double y, do
     const auto radii = s_.contact_radii(p, t0());
     st.rho_lo = radii.first, st.rho_hi = radii.second, st.active = true;
   }
+  if (!s_.profile.surface_is_hull() && !s_.wiggles && s_.profile.splits())
+    return split_height(p, x, y, best, counts, t0());
   const PassageGeometry geo(s_, p, x, y, st.rho_lo, st.rho_hi);
   // The tip's cut where the node lies on the pass's line (+inf elsewhere), found at most once.
   double tip = NAN;
   auto tip_cut = [&] { return std::isnan(tip) ? tip = tip_height(geo, t0) : tip; };
   double t_b = NAN;
-  if (!s_.profile.surface_is_hull() && !s_.wiggles && s_.profile.splits())
-    return split_height(p, x, y, best, counts, t0());
   if (!s_.profile.surface_is_hull()) {
     // Heights along the pass may have two minima (an insert's inner side, an edge moved off the
     // axis): the reference walk, which needs only the hull's bound.
