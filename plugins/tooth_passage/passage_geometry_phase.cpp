@@ -67,7 +67,7 @@ bool PassageGeometry::land(const Sample& at, double r, double lag_rate, double& 
     const CutterProfile::Point p = s_.profile.at(rho);
     t = t1;
     q = {p.on && rho >= rho_lo_ && rho <= rho_hi_, 0.0,
-         p.on ? c.z() - p.depth + s_.profile.up() : INFINITY, rho, q.lag + lag_rate * dt};
+         p.on ? c.z() - p.depth + s_.profile.up() : INFINITY, rho, q.lag + dt * lag_rate};
     return true;
   }
   if (!(r2 < s_.R2)) return false;
