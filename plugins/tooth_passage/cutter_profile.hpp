@@ -115,10 +115,10 @@ class CutterProfile {
   // The deepest the hull is over distances at least rho_lo.
   double deepest(double rho_lo) const { return hull_depth(rho_lo); }
 
-  // Where the height's slope and the lag's are bounded: rho within [rim_in, rim_out], kRim of the
-  // tube's radius from its centre on the side that has an edge.
+  // How far out the lag's slope and the height's are bounded: a fraction of the tube's radius
+  // beyond its centre (an insert's inner side needs no such limit: its lag is constant, and the
+  // walks bound its height by the split depth, not its slope).
   double rim_out(double fraction) const { return c_ + fraction * r_; }
-  double rim_in(double fraction) const { return inner_ ? c_ - fraction * r_ : -INFINITY; }
   // The steepest the surface's height is over rho within [lo, hi] (tan of alpha: 0 on the
   // bottom), given both within the rims.
   double steepest(double lo, double hi) const { return std::max(steepness(lo), steepness(hi)); }
