@@ -99,7 +99,8 @@ class CutterProfile {
     return d == 0 ? 0.0 : rho * d / (r_ * p.cos_a);
   }
 
-  // The hull's depth at rho (see above): non-increasing in rho, continuous, at least the cutter's.
+  // The hull's depth at rho (see above): non-increasing in rho, continuous, at least the cutter's;
+  // so also the deepest it is over all distances from rho out.
   double hull_depth(double rho) const {
     const double e = rho - c_;
     if (e <= 0) return r_;
@@ -112,8 +113,6 @@ class CutterProfile {
     const double e = rho - c_, s = e / r_;
     return std::abs(s) < 1 ? r_ * std::sqrt(1 - s * s) : r_ - std::abs(e);
   }
-  // The deepest the hull is over distances at least rho_lo.
-  double deepest(double rho_lo) const { return hull_depth(rho_lo); }
 
   // How far out the lag's slope and the height's are bounded: a fraction of the tube's radius
   // beyond its centre (an insert's inner side needs no such limit: its lag is constant, and the

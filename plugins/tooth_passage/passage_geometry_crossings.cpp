@@ -96,7 +96,7 @@ struct PassageGeometry::Halving {
                          : geo.table_.corrected() ? geo.table_.correction_bounds(ta, tb).lo.z()
                                                   : 0.0;
     const double z = geo.table_.nominal_lowest_z(ta, tb, p.lo.n.z(), p.hi.n.z()) + shift;
-    if (geo.s_.ringed) return z + f.up() - f.deepest(sp.plan_lo);
+    if (geo.s_.ringed) return z + f.up() - f.hull_depth(sp.plan_lo);
     return z - std::sqrt(geo.s_.R2 - sp.plan_lo * sp.plan_lo);
   }
   void found(int tooth, double t) {

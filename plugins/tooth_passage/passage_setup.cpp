@@ -175,7 +175,7 @@ void PassageSetup::near(double x, double y,
                d < profile.reach()) {
       // Every crossing lies on the cutter, no lower than its lowest centre less its depth at the
       // least distance the centre comes to in plan.
-      const double depth = ringed ? profile.deepest(std::max(d, 0.0))
+      const double depth = ringed ? profile.hull_depth(std::max(d, 0.0))
                                   : std::sqrt(R2 - std::pow(std::max(d, 0.0), 2));
       out.push_back({window[w].lowest_centre + profile.up() - depth, w});
     }
