@@ -38,7 +38,8 @@ class CutterProfile {
                : bottom_ ? out
                          : c_),
         tip_(inner_ ? start_ : c_ + r_ * std::sin(tool.min_polar_angle())),
-        lag_tip_(tool.lag(inner_ ? tool.first_polar_angle() : tool.min_polar_angle())) {}
+        lag_tip_(tool.lag(inner_ ? tool.first_polar_angle() : tool.min_polar_angle())),
+        lag_rim_(tool.lag_sc(1.0, 0.0)) {}
 
   // Whether the tool's section is the tube's circle, which the profile describes (ToolGeometry's
   // default): an insert tilted by an axial rake has another.
@@ -88,8 +89,10 @@ class CutterProfile {
     const double cos_a = std::sqrt(1 - s * s);
     return {true, r_ * cos_a, s, cos_a};
   }
-  // The edge's lag at a point (held below the tip radius).
+  // The edge's lag at a point: held below the tip radius, and beyond the reach at the rim's, so
+  // that the phase there goes on continuously (the walks' bounds and turns read it across).
   double lag(const ToolGeometry& tool, double rho, const Point& p) const {
+    if (rho >= reach()) return lag_rim_;
     return rho < tip_ || !p.on ? lag_tip_ : tool.lag_sc(p.sin_a, p.cos_a);
   }
   // dPsi / d ln(rho) there: rho Psi'(alpha) / (r cos alpha); zero where the lag is held.
@@ -132,7 +135,7 @@ class CutterProfile {
 
   double r_, c_, up_;
   bool bottom_, inner_;
-  double start_, tip_, lag_tip_;
+  double start_, tip_, lag_tip_, lag_rim_;
 };
 
 }  // namespace topomill::plugins

@@ -126,8 +126,7 @@ class LagShape {
 
   // The lag at rho, held below the tip radius as the edge holds it.
   double lag(const ToolGeometry& tool, double rho) const {
-    if (profile_.ringed())
-      return rho < R_ ? profile_.lag(tool, rho, profile_.at(rho)) : tool.lag(M_PI / 2);
+    if (profile_.ringed()) return profile_.lag(tool, rho, profile_.at(rho));
     const double s = std::clamp(std::max(rho, tip_) / R_, 0.0, 1.0), c = std::sqrt(1 - s * s);
     return tool.lag_sc(s, c);
   }

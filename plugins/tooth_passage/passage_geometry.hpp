@@ -92,11 +92,13 @@ class PassageGeometry {
   // (the frame map: the identity for a vertical tool), where its distance from the axis and its
   // azimuth are the crossing equation's. Its polar angle from the tip is taken as asin(rho / R),
   // the lag's argument: past a tilted tool's equator that folds back, which keeps g continuous
-  // (the bounds hold for it), and no edge is there (not over).
+  // (the bounds hold for it), and no edge is there (not over). Beyond the ball in plan the point
+  // is taken on its equator's plane and the lag held at the rim's, as LagShape continues it: the
+  // phase goes on continuously for the bounds and turns read across the rim.
   Probe probe(int tooth, double t, const Vec3& c) const {
     if (s_.ringed) return probe_ringed(tooth, t, c);
     const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
-    if (r2 >= s_.R2) return {false, 0, INFINITY, std::sqrt(r2), NAN};
+    if (!(r2 < s_.R2)) return probe_past_rim(tooth, t, dx, dy);
     const double below = std::sqrt(s_.R2 - r2);
     const Vec3 p = tilted_ ? Vec3(to_tool(t) * Vec3(dx, dy, -below)) : Vec3(dx, dy, -below);
     const double rho = std::sqrt(p.x() * p.x() + p.y() * p.y()), sin_a = rho / s_.R;
@@ -106,6 +108,8 @@ class PassageGeometry {
             wrap(s_.tooth_angle[tooth] + lag + phase_ + s_.omega * t - std::atan2(p.y(), p.x())),
             c.z() - below, rho, lag};
   }
+  // The same past the ball in plan (the node's plan offset dx, dy; out of line: rarely asked).
+  Probe probe_past_rim(int tooth, double t, double dx, double dy) const;
 
   // A ringed cutter's probe (a vertical axis): its profile over the node
   // (passage_geometry_ringed.hpp).
@@ -115,7 +119,7 @@ class PassageGeometry {
   // the axis cannot come round the node between: wherever the centre stays in a convex region
   // that leaves the node out (span's rho_lo > 0: the chord thickened by its sagitta), the node's
   // azimuth turns by less than pi, so of G's increment omega (tb - ta) + lag_b - lag_a - turn of
-  // the azimuth all but the last is known and the wrapped phases fix the rest. NaN off the ball.
+  // the azimuth all but the last is known and the wrapped phases fix the rest.
   double advance(double ta, const Probe& a, double tb, const Probe& b) const {
     const double known = s_.omega * (tb - ta) + b.lag - a.lag;
     return known + wrap(b.g - a.g - known);
@@ -421,9 +425,10 @@ class PassageGeometry {
   double walk(double t_b, std::vector<Crossing>& roots, std::uint64_t& visited,
               double below = INFINITY, Crossing* lowest = nullptr) const;
 
- private:
   // How far from the axis the lag's slope is bounded: kRimFraction of the tube from its centre.
   double rim() const { return s_.ringed ? s_.profile.rim_out(kRimFraction) : kRimFraction * s_.R; }
+
+ private:
   // |(x, y)| without hypot's care for overflow, which costs here and is not needed (mm and mm/s).
   static double norm(double x, double y) { return std::sqrt(x * x + y * y); }
   // One call of crossings_in: its pieces and how each is settled (passage_geometry_crossings.cpp).

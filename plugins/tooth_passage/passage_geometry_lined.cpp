@@ -166,7 +166,6 @@ bool PassageGeometry::crossings_lined(int only, double a, double b, double& belo
   const PassageSetup::PlanLine& line = s_.window[win_].plan_line;
   const double sense = s_.omega > 0 ? 1.0 : -1.0;
   const Probe pa = probe(0, a), pb = probe(0, b);
-  if (!std::isfinite(pa.lag) || !std::isfinite(pb.lag)) return false;  // off the ball
   // The node's distance from the axis over [a, b]: at least its distance from the line's strip
   // (lined_convexity's rho_lo); at most its distance across from the strip's far side together with
   // the larger at the ends (the centre moves forwards along the line, so its offset along stays

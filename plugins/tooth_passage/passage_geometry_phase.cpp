@@ -7,6 +7,18 @@
 
 namespace topomill::plugins {
 
+// The point on the equator's plane, and the lag held at the rim's (sin 1, cos 0) as LagShape
+// continues it: continuous with the ball's probe at the rim, no edge, no height.
+Probe PassageGeometry::probe_past_rim(int tooth, double t, double dx, double dy) const {
+  const Vec3 p = tilted_ ? Vec3(to_tool(t) * Vec3(dx, dy, 0.0)) : Vec3(dx, dy, 0.0);
+  const double rho = std::sqrt(p.x() * p.x() + p.y() * p.y());
+  const double sin_a = std::min(rho / s_.R, 1.0), cos_a = std::sqrt(1 - sin_a * sin_a);
+  const double lag = sin_a < s_.sin_tip ? s_.lag_tip : s_.tool->lag_sc(sin_a, cos_a);
+  return {false,
+          wrap(s_.tooth_angle[tooth] + lag + phase_ + s_.omega * t - std::atan2(p.y(), p.x())),
+          INFINITY, rho, lag};
+}
+
 double PassageGeometry::crossing(int tooth, double t, double& slope, Probe& last) const {
   double g_prev = 0, t_prev = t;
   last = {false, INFINITY, INFINITY, INFINITY, NAN};

@@ -9,7 +9,6 @@ namespace topomill::plugins {
 inline Probe PassageGeometry::probe_ringed(int tooth, double t, const Vec3& c) const {
   const double dx = x_ - c.x(), dy = y_ - c.y(), rho = norm(dx, dy);
   const CutterProfile& f = s_.profile;
-  if (!(rho < f.reach())) return {false, 0, INFINITY, rho, NAN};
   const CutterProfile::Point p = f.at(rho);
   const double lag = f.lag(*s_.tool, rho, p);
   return {p.on && rho >= rho_lo_ && rho <= rho_hi_,

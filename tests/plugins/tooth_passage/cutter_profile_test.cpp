@@ -1,8 +1,9 @@
 // tooth_passage's cutter profile, against the tool's own section and lag: the depth over a node
-// at the section's distance is the section's height, wherever an edge is; the hull is never
-// shallower than the surface and never deepens outwards; the lag's slope in ln(rho) is the lag's
-// central difference; the steepness is the depth's central difference; and the profile says it
-// describes a tool exactly when the section is the tube's circle.
+// at the section's distance is the section's height, wherever an edge is, and the lag goes on
+// continuously past the reach; the hull is never shallower than the surface and never deepens
+// outwards; the lag's slope in ln(rho) is the lag's central difference; the steepness is the
+// depth's central difference; and the profile says it describes a tool exactly when the section
+// is the tube's circle.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
@@ -50,6 +51,10 @@ TEST_CASE("the profile's depth is the section's height wherever an edge is", "[t
   // Past the reach nothing; inside the ring the bottom's depth r, or no edge (an insert's hole,
   // a ball's ring moved out).
   CHECK_FALSE(f.at(f.reach() * 1.0001).on);
+  // Past the reach the lag holds the rim's, so that the phase goes on continuously there (the
+  // walks' turns and bounds read across the rim).
+  auto lag_at = [&](double rho) { return f.lag(*tool, rho, f.at(rho)); };
+  CHECK(lag_at(f.reach() * 1.5) == Approx(lag_at(f.reach() * (1 - 1e-12))).margin(1e-5));
   if (tool->has_bottom()) {
     CHECK(f.at(0.5 * tool->ring()).depth == tool->radius());
     CHECK(f.at(0.5 * tool->ring()).on);
