@@ -23,6 +23,7 @@ IdealFollow::IdealFollow(const PassageGeometry& geo, std::vector<std::vector<Roo
 
 double IdealFollow::run(double t_b, double best_node) {
   t_b_ = t_b, best_node_ = best_node, best_ = INFINITY;
+  cut_[0] = cut_[1] = Cut{};
   scratch_.zone.clear();
   zone_[0] = zone_[1] = t_b;
   solve_zone();
@@ -74,9 +75,65 @@ inline bool IdealFollow::prove_edge(int side) {
   return edge_proven_[side] = beyond_edge_[side].monotone;
 }
 
+inline double IdealFollow::cut(int dir, double from, double far) const {
+  // (Halved to an eighth of the stretch: close enough that the rest is not needlessly long.)
+  constexpr int kHalvings = 3;
+  if (!std::isfinite(std::min(best_, best_node_)) || !ends_at(dir, far)) return NAN;
+  double in = from, out = far;
+  for (int k = 0; k < kHalvings; ++k) {
+    const double mid = 0.5 * (in + out);
+    (ends_at(dir, mid) ? out : in) = mid;
+  }
+  return out;
+}
+
+inline PassageGeometry::Monotony IdealFollow::cut_ahead(int dir, double from, double far,
+                                                        double& until) {
+  Cut& k = cut_[dir > 0];
+  if (!(dir * (k.at - from) > 0 && dir * (k.at - far) <= 0)) {
+    k.at = cut(dir, from, far), k.from = NAN;
+    if (std::isnan(k.at)) return {};
+  }
+  until = k.at;
+  if (!(k.proven.monotone && dir * (from - k.from) >= 0))
+    k.proven = geo_.monotony({from, k.at}), k.from = from;
+  return k.proven;
+}
+
+inline bool IdealFollow::nears_rim(double t, double reach) const {
+  const PassageSetup::Window& w = s_.window[geo_.window()];
+  return !w.tilted && !w.turn.on && geo_.distance(t) + w.plan_line.speed * reach > geo_.rim();
+}
+
+inline void IdealFollow::seed_limit() {
+  for (int tooth = 0; tooth < s_.teeth; ++tooth) {
+    const Root* near = nearest(roots_[static_cast<std::size_t>(tooth)], t_b_, 0.75 * rev_);
+    if (!near) continue;
+    double slope = near->slope;
+    Probe q{};
+    const double t = geo_.crossing(tooth, near->ahead(), slope, q);
+    if (PassageGeometry::converged(q)) take(tooth, t, &q);
+  }
+}
+
+inline bool IdealFollow::proven_to_cuts(double reach) {
+  const double t_b = t_b_;
+  if (!nears_rim(t_b, reach)) return false;
+  if (!std::isfinite(best_node_)) seed_limit();
+  const double lo = cut(-1, t_b, t_b - reach), hi = cut(+1, t_b, t_b + reach);
+  if (std::isnan(lo) && std::isnan(hi)) return false;
+  const double a = std::isnan(lo) ? t_b - reach : lo, b = std::isnan(hi) ? t_b + reach : hi;
+  const PassageGeometry::Monotony m = geo_.monotony({a, b});
+  if (!m.monotone) return false;
+  // (What it proves stands for the steps up to each cut.)
+  if (!std::isnan(lo)) cut_[0] = {lo, b, m};
+  if (!std::isnan(hi)) cut_[1] = {hi, a, m};
+  return true;
+}
+
 inline void IdealFollow::solve_zone() {
-  const double t_b = t_b_, rev = rev_;
-  if (geo_.monotony(geo_.around(t_b, 0.8 * rev)).monotone) return;
+  const double t_b = t_b_, rev = rev_, reach = 0.8 * rev;
+  if (geo_.monotony(geo_.around(t_b, reach)).monotone || proven_to_cuts(reach)) return;
   // Each edge as near t_b as the phase is proven monotone beyond it, by eighths of a revolution
   // (the axis's closest approach holds the turn-backs, so a whole revolution solved exactly is
   // mostly pieces far from it); from half a revolution out, by whole ones (below).
@@ -151,7 +208,8 @@ inline void IdealFollow::follow(int tooth) {
              first,
              first_rate,
              first_root ? first_match : nullptr,
-             {}};
+             {},
+             false};
     if (first_root) c.rise.add(first_height);
     for (int m = 1; m < kMaxSteps && !c.rise.done(); ++m)
       if (!step(tooth, dir, c)) break;
@@ -188,7 +246,7 @@ inline bool IdealFollow::ends_before_next(int dir, const Cursor& c) const {
 
 inline void IdealFollow::solve_revolution(int tooth, int dir, Cursor& c) {
   exact(tooth, std::min(c.t, c.t + dir * rev_), std::max(c.t, c.t + dir * rev_));
-  c.t += dir * rev_, c.at_root = false;
+  c.t += dir * rev_, c.at_root = false, c.jumped = false;
 }
 
 inline bool IdealFollow::step(int tooth, int dir, Cursor& c) {
@@ -196,14 +254,30 @@ inline bool IdealFollow::step(int tooth, int dir, Cursor& c) {
   // can be shorter than a revolution).
   if (dir > 0 ? c.t > t_hi_ + rev_ / 2 : c.t < t_lo_ - rev_ / 2) return false;
   if (ends_before_next(dir, c)) return false;
-  const double far = c.t + dir * kAhead * rev_;
+  double far = c.t + dir * kAhead * rev_;
   // Where the phase is monotone all along by the root's distance from the axis (most nodes), no
   // span is asked: the step's turn is read exactly from its probes (proven_next).
   const int side = dir > 0;
-  const PassageGeometry::Monotony ahead =
+  PassageGeometry::Monotony look =
       !c.at_root && zone_[1] > zone_[0] && c.t == zone_[side] && edge_proven_[side]
           ? beyond_edge_[side]
           : geo_.monotony({c.t, far, c.at_root ? c.rho : NAN, kAhead * rev_});
+  // Where the whole look ahead is not proven, the part of it the bound leaves to the walk may be.
+  // A cursor on the far side of where the bound leaves crossings to the walk (a root past a
+  // ringed cutter's reach, where the phase goes on with no edge): nothing between it and where the
+  // bound allows again can lower the node, and the walk goes on from there as from an edge, where
+  // the stretch ahead no longer runs past the rim.
+  const bool near_rim = !look.monotone && nears_rim(c.t, kAhead * rev_);
+  if (near_rim && ends_at(-dir, c.t)) {
+    const double in = cut(-dir, t_b_, c.t);
+    if (dir * (in - c.t) > 0) {
+      c.t = in, c.at_root = false, c.jumped = true, far = c.t + dir * kAhead * rev_;
+      look = geo_.monotony({c.t, far});
+    }
+  }
+  double until = far;
+  const PassageGeometry::Monotony ahead =
+      look.monotone || !near_rim ? look : cut_ahead(dir, c.t, far, until);
   if (!ahead.monotone) return solve_revolution(tooth, dir, c), true;
   double guess = c.t + dir * rev_, gap = 0;
   if (c.at_root) {
@@ -237,9 +311,18 @@ inline bool IdealFollow::step(int tooth, int dir, Cursor& c) {
   }
   Probe q{};
   const double t = solve(tooth, guess, kSamePassage * rev_, q, c.from, hint);
+  if (until != far && !(dir * (t - until) <= 0)) {
+    // Nothing from `until` on can lower the node: the walk ends there unless the phase, monotone
+    // up to it, turns far enough to cross before (exact from the probes at both ends).
+    const double need = c.at_root ? kTwoPi : gap;
+    if (ahead.top * std::abs(until - c.t) < need) return false;
+    if (std::abs(geo_.advance(c.t, c.q, until, geo_.probe(tooth, until))) < need) return false;
+    return solve_revolution(tooth, dir, c), true;
+  }
   if (!proven_next(geo_, tooth, dir, c, t, q, ahead, gap))
     return solve_revolution(tooth, dir, c), true;
-  c.t = t, c.at_root = true, c.rho = q.rho, c.q = q, c.rate = scratch_.fresh.back().slope;
+  c.t = t, c.at_root = true, c.jumped = false, c.rho = q.rho, c.q = q,
+  c.rate = scratch_.fresh.back().slope;
   c.rise.add(take(tooth, t, &q));
   return true;
 }
@@ -258,7 +341,8 @@ bool IdealFollow::proven_next(const PassageGeometry& geo, int tooth, int dir, co
   const double rev = geo.setup().rev;
   if (std::isnan(t)) return false;
   const double moved = dir * (t - c.t), need = c.at_root ? kTwoPi : gap;
-  if (!c.at_root && moved < 0) return true;  // behind the edge: the exact solve has it already
+  // Behind the edge the exact solve has it already (not behind one the walk jumped to).
+  if (!c.at_root && moved < 0) return !c.jumped;
   if (!(moved > (c.at_root ? kSamePassage * rev : 0))) return false;
   if (moved <= kAhead * rev)
     // (Less by a margin: where the bound is tight, G' = omega on a pass's line, a solve that went

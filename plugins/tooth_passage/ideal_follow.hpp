@@ -49,6 +49,9 @@ class IdealFollow {
     double rate = 0;   // the phase's rate at t, when at a root
     const Root* from;  // the last node's root at t, if any
     RiseCount rise;
+    // At an edge the walk jumped to past crossings that cannot lower the node (step): nothing
+    // behind it was solved, and a crossing found behind it is not taken as the next.
+    bool jumped = false;
   };
   // The step proof: whether t (probe q there) is proven the crossing of `tooth` right after c's
   // in direction dir (after an edge: the first beyond it, the phase still to turn by `gap`).
@@ -83,6 +86,25 @@ class IdealFollow {
   bool step(int tooth, int dir, Cursor& c);
   // Whether every later crossing lies beyond t_bound, where the envelope is too high.
   bool ends_at(int dir, double t_bound) const;
+  // Where the stretch from `from` to `far` (dir's way) ends for the walk: the first time found
+  // by halving from which ends_at holds; NaN where it does not hold at `far`. A ringed cutter's
+  // lag has no bounded rate at its rim, which a node near the bottom reaches within a revolution;
+  // its crossings there are too high to matter, and the phase is proven monotone over the rest.
+  double cut(int dir, double from, double far) const;
+  // What the bounds prove of the phase from `from` (dir's way) up to the cut within `far`, which
+  // goes to `until` (left alone where there is none). A cut stands as the walk goes on (the
+  // limit only falls), and so does what was proven up to it: both are kept for the later steps
+  // this way, of every tooth.
+  PassageGeometry::Monotony cut_ahead(int dir, double from, double far, double& until);
+  // Whether the node can get past the rim (PassageGeometry::rim) within `reach` of t, by a
+  // vertical tool's distance at t and the centre's top speed: only there does a cut help.
+  bool nears_rim(double t, double reach) const;
+  // Whether the phase is proven monotone `reach` either side of t_b, but for what lies beyond
+  // the cut on each side (cut()): then no zone is needed. Tried where the node nears the rim.
+  bool proven_to_cuts(double reach);
+  // Where the phase cannot be proven monotone around t_b: a real crossing's height from each
+  // tooth's last-node root nearest t_b, so that the walk has a limit to cut by (cut()).
+  void seed_limit();
   // Whether the walk ends before the next crossing, by the envelope and the gap to it.
   bool ends_before_next(int dir, const Cursor& c) const;
   // The next revolution exactly, where the next crossing cannot be proven the next.
@@ -110,6 +132,13 @@ class IdealFollow {
   // of every tooth's walk from that edge needs no other.
   PassageGeometry::Monotony beyond_edge_[2];  // (read only where edge_proven_)
   bool edge_proven_[2] = {false, false};
+  // Each way (earlier, later), the cut last found (NaN: none) and what was proven from `from` up
+  // to it (cut_ahead).
+  struct Cut {
+    double at = NAN, from = NAN;
+    PassageGeometry::Monotony proven{};
+  };
+  Cut cut_[2];
 };
 
 }  // namespace topomill::plugins

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 
 namespace topomill::plugins {
 
@@ -199,21 +200,31 @@ RowSweep::PassResult RowSweep::split_height(std::size_t p, double x, double y, d
   // either side, lands within round-off (1e-9 / omega) of it on one side or the other. Over so
   // short a piece the bound moves by far less than round-off.
   const double overlap = 1e-6 * s_.period;
+  struct Side {
+    std::optional<PassageGeometry> geo;
+    double t_b = NAN, low = INFINITY;
+  } sides[2];
   for (int side = 0; side < 2; ++side) {
     PassState& st = side ? far_side_[p] : state_[p];
-    const PassageGeometry geo(s_, p, x, y, state_[p].rho_lo, state_[p].rho_hi,
-                              side ? std::pair<double, double>{t_m - overlap, INFINITY}
-                                   : std::pair<double, double>{-INFINITY, t_m + overlap},
-                              true);
-    if (!(geo.t_hi() > geo.t_lo())) continue;
-    double t_b = NAN;
-    if (ideal_too_high(
-            geo, st, best, [t_m] { return t_m; }, t_b))
+    Side& sd = sides[side];
+    sd.geo.emplace(s_, p, x, y, state_[p].rho_lo, state_[p].rho_hi,
+                   side ? std::pair<double, double>{t_m - overlap, INFINITY}
+                        : std::pair<double, double>{-INFINITY, t_m + overlap},
+                   true);
+    if (!(sd.geo->t_hi() > sd.geo->t_lo()) ||
+        ideal_too_high(
+            *sd.geo, st, best, [t_m] { return t_m; }, sd.t_b, &sd.low))
       continue;
     out.can_lower = true;
-    if (std::isnan(t_b)) continue;
-    IdealFollow follow(geo, st.roots, ideal_, counts);
-    const double h = follow.run(t_b, best);
+  }
+  // The side whose envelope comes lower first: its lowest passage often rules the other out (the
+  // ring's front and back cross a node at heights that differ by the feed's climb).
+  const int first = sides[1].low < sides[0].low ? 1 : 0;
+  for (int side : {first, 1 - first}) {
+    const Side& sd = sides[side];
+    if (!(sd.low < best)) continue;
+    IdealFollow follow(*sd.geo, (side ? far_side_[p] : state_[p]).roots, ideal_, counts);
+    const double h = follow.run(sd.t_b, best);
     route_.exact = route_.exact || follow.exact_used();
     if (s_.stopped()) return out;  // the map is discarded
     out.height = std::min(out.height, h), best = std::min(best, h);
@@ -223,7 +234,7 @@ RowSweep::PassResult RowSweep::split_height(std::size_t p, double x, double y, d
 
 template <class T0>
 bool RowSweep::ideal_too_high(const PassageGeometry& geo, PassState& st, double best, T0 t0,
-                              double& t_b) {
+                              double& t_b, double* low_out) {
   // The envelope has a single minimum: its bottom, followed from node to node, is the pass's
   // lowest point, and a pass farther out on this side lies higher still. Along the row the
   // bottom's height changes at the ball's slope across (the envelope theorem: d/dx of the height
@@ -235,6 +246,7 @@ bool RowSweep::ideal_too_high(const PassageGeometry& geo, PassState& st, double 
   t_b = bottom([&](double t) { return geo.envelope(t); }, geo, st, x, t0);
   if (std::isnan(t_b)) return false;
   const double low = geo.envelope(t_b);
+  if (low_out) *low_out = low;
   if (low < best) return false;
   const Vec3 c = s_.window[geo.window()].centre(t_b);
   const double dx = x - c.x(), dy = geo.y() - c.y(), r2 = dx * dx + dy * dy;
@@ -300,6 +312,15 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
     if (curvature > 0) {
       const double shift = 0.5 * w * (fm - fp) / curvature;
       if (std::abs(shift) <= w) t_b = std::clamp(tp + shift, geo.t_lo(), geo.t_hi());
+    }
+    if (std::isnan(t_b) && geo.split()) {
+      // A split pass's side is often lowest at its end, the axis's closest approach, where the
+      // parabola's vertex lies beyond: the bound falling into that end over its last
+      // kBottomTolerance of a period has, unimodal, its lowest within that of the end, as close
+      // as the golden section finds it.
+      const double tol = kBottomTolerance * s_.period;
+      const double end = fp < fm ? geo.t_hi() : geo.t_lo(), in = fp < fm ? -tol : tol;
+      if (std::abs(tp - end) <= w && geo.within(end + in) && f(end + in) > f(end)) t_b = end;
     }
   }
   if (std::isnan(t_b)) {

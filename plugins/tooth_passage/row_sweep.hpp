@@ -83,9 +83,11 @@ class RowSweep {
   // node (others): the node's best height.
   double node_height(double x, double y, NodeCounts& counts);
   // Ideal paths: whether the pass's envelope bottom proves it cannot lower the node (then
-  // `t_b` is untouched); else its bottom into t_b (NaN: never level with the node).
+  // `t_b` is untouched); else its bottom into t_b (NaN: never level with the node), and the
+  // envelope there into `low` where given.
   template <class T0>
-  bool ideal_too_high(const PassageGeometry& geo, PassState& st, double best, T0 t0, double& t_b);
+  bool ideal_too_high(const PassageGeometry& geo, PassState& st, double best, T0 t0, double& t_b,
+                      double* low = nullptr);
   // The reference walk for the node and pass, seeding the next node from its lowest passage.
   double reference(const PassageGeometry& geo, PassState& st, double t_b, double best,
                    NodeCounts& counts, PassResult& out);

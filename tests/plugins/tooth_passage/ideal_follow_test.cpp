@@ -96,7 +96,7 @@ TEST_CASE("the ideal follow's step proof never passes over a crossing",
                        << " s towards " << dir);
           const double t = roots[i];
           const tp::Probe q0 = geo.probe(tooth, t);
-          IdealFollow::Cursor cur{t, true, q0.rho, q0, 0.0, nullptr, {}};
+          IdealFollow::Cursor cur{t, true, q0.rho, q0, 0.0, nullptr, {}, false};
           const PassageGeometry::Monotony mono = geo.monotony({t, t + dir * ahead, q0.rho, ahead});
           if (!mono.monotone) continue;  // the follow solves this revolution exactly
           ++tried;
