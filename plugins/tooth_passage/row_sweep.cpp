@@ -320,7 +320,10 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
       // as the golden section finds it.
       const double tol = kBottomTolerance * s_.period;
       const double end = fp < fm ? geo.t_hi() : geo.t_lo(), in = fp < fm ? -tol : tol;
-      if (std::abs(tp - end) <= w && geo.within(end + in) && f(end + in) > f(end)) t_b = end;
+      // (The last bottom was mostly that end: its height is f0 then.)
+      if (std::abs(tp - end) <= w && geo.within(end + in) &&
+          f(end + in) > (tp == end ? f0 : f(end)))
+        t_b = end;
     }
   }
   if (std::isnan(t_b)) {

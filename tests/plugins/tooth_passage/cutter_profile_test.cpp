@@ -51,10 +51,11 @@ TEST_CASE("the profile's depth is the section's height wherever an edge is", "[t
   // Past the reach nothing; inside the ring the bottom's depth r, or no edge (an insert's hole,
   // a ball's ring moved out).
   CHECK_FALSE(f.at(f.reach() * 1.0001).on);
-  // Past the reach the lag holds the rim's, so that the phase goes on continuously there (the
-  // walks' turns and bounds read across the rim).
+  // Past the reach the lag holds the tool's own at its rim (alpha = pi / 2), so that the phase
+  // goes on continuously there (the walks' turns and bounds read across the rim).
   auto lag_at = [&](double rho) { return f.lag(*tool, rho, f.at(rho)); };
-  CHECK(lag_at(f.reach() * 1.5) == Approx(lag_at(f.reach() * (1 - 1e-12))).margin(1e-5));
+  CHECK(lag_at(f.reach() * 1.5) == Approx(tool->lag(M_PI / 2)).margin(1e-12));
+  CHECK(lag_at(f.reach() * (1 - 1e-12)) == Approx(tool->lag(M_PI / 2)).margin(1e-5));
   if (tool->has_bottom()) {
     CHECK(f.at(0.5 * tool->ring()).depth == tool->radius());
     CHECK(f.at(0.5 * tool->ring()).on);
