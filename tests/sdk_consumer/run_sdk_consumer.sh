@@ -41,6 +41,9 @@ TOPOMILL_PLUGIN_PATH="$work/template" "$topomill" run "$scene" -q --out "$work/o
 
 # The same plugin built for another ABI is refused, with the library and both versions.
 abi=$("$topomill" --version | sed -n 's/.*plugin ABI \([0-9]*\).*/\1/p')
+# The package reports the ABI its headers define.
+grep -qx "set(TOPOMILL_ABI_VERSION $abi)" "$prefix/lib/cmake/topomill/topomillConfig.cmake" \
+  || fail "the CMake package's TOPOMILL_ABI_VERSION is not the program's ABI $abi"
 cmake -S "$src/sdk/template" -B "$work/template_abi" "${gen[@]}" -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$prefix" -DBUILD_TESTING=OFF "${flags[@]}" \
   -DCMAKE_CXX_FLAGS="$extra -DTOPOMILL_PLUGIN_ABI=999u" >/dev/null
