@@ -64,6 +64,13 @@ class RoundInsert : public ToolGeometry {
     const double up = ri_ * (1 - std::cos(alpha));  // above the insert's lowest point
     return {centre_ + ri_ * std::sin(alpha) + up * sin_p_, -ri_ + up * cos_p_};
   }
+  // With a negative axial rake the edge folds back before alpha = pi/2: its widest, where
+  // d/dalpha of sin(alpha) + (1 - cos(alpha)) sin(gamma_p) vanishes, is sin(gamma_p) +
+  // sqrt(1 + sin(gamma_p)^2) out from the insert's centre (in ri).
+  double reach() const override {
+    if (sin_p_ >= 0) return section(M_PI / 2).x();
+    return centre_ + ri_ * (sin_p_ + std::sqrt(1 + sin_p_ * sin_p_));
+  }
 
  private:
   // The inner end of the edge: -pi/2, or where the insert reaches the axis (a large insert on a

@@ -158,10 +158,9 @@ bool solve_root(const PassageGeometry& geo, int tooth, const Root* from, double 
 }
 
 double floor_steepness(const PassageSetup& s, std::size_t w, double below) {
-  // A ringed cutter's tube: its points `depth` below the tube's centre plane are no steeper than
-  // r / depth either (its bottom is flat).
-  const double depth = s.window[w].lowest_centre + s.profile.up() - below;
-  return depth > 0 ? std::max(1.0, s.R / depth) : INFINITY;
+  // Points `depth` below the ball's centre are no steeper than R / depth, past its rim than 1; a
+  // ringed cutter's section likewise (its bottom is flat): CutterProfile::steepest_below.
+  return s.profile.steepest_below(s.window[w].lowest_centre + s.profile.up() - below);
 }
 
 // On a corrected path a passage's height along the row, h(x) = E(t(x), x) (E the ball's surface

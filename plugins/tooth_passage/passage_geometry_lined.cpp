@@ -83,14 +83,13 @@ struct PassageGeometry::LinedZone {
     const double D = qx * v.x() + qy * v.y(), M = qx * v.y() - qy * v.x();
     double psi, rise;
     if (s.ringed) {
-      // The hull's rise: its depth sqrt(r^2 - e^2) (e = rho - c > 0; flat inside the ring) falls
-      // at e rho' / depth, rho' = -D / rho (e is `out` here); on a split side the inner side's
-      // too.
+      // The hull's rise: its depth (flat inside the ring) falls at its slope times rho', rho' =
+      // -D / rho; on a split side the inner side's too.
       const double rho = std::sqrt(r2);
       const CutterProfile::Point p = s.profile.at(rho);
       psi = s.profile.slope(*s.tool, rho, p);
       const double out = rho - s.profile.ring();
-      rise = v.z() - ((out > 0 || geo.split()) && p.on ? out * D / (rho * p.depth) : 0.0);
+      rise = v.z() - ((out > 0 || geo.split()) && p.on ? p.steep * D / rho : 0.0);
     } else {
       const double sin_a = std::sqrt(r2) / s.R, cos_a = std::sqrt(1 - sin_a * sin_a);
       psi = s.lag_shape.slope(sin_a, cos_a, *s.tool);

@@ -6,6 +6,12 @@
 
 namespace topomill::plugins {
 
+namespace {
+// How far towards the rim (a fraction of the way from the axis, or from the ring) a pass's floor
+// keeps a slope bound that holds over a fiftieth of the radius: beyond it the slope grows too fast.
+constexpr double kSlopeOut = 0.9;
+}  // namespace
+
 RowSweep::RowSweep(const PassageSetup& s)
     : s_(s), by_line_(s.window.size()), state_(s.window.size()), far_side_(s.window.size()) {
   std::iota(by_line_.begin(), by_line_.end(), std::size_t{0});
@@ -251,15 +257,16 @@ bool RowSweep::ideal_too_high(const PassageGeometry& geo, PassState& st, double 
   const Vec3 c = s_.window[geo.window()].centre(t_b);
   const double dx = x - c.x(), dy = geo.y() - c.y(), r2 = dx * dx + dy * dy;
   st.floor = low, st.floor_x = x;
-  st.floor_slope = r2 < 0.81 * s_.R2 ? 2 * std::abs(dx) / std::sqrt(s_.R2 - r2)
-                                     : INFINITY;  // near the rim: no bound, look each time
+  // Near the rim (past kSlopeOut of the way to it) no bound: look each time.
+  st.floor_slope =
+      r2 < kSlopeOut * kSlopeOut * s_.R2 ? 2 * std::abs(dx) / std::sqrt(s_.R2 - r2) : INFINITY;
   if (s_.ringed) {
-    // The tube's: d/dx of -sqrt(r^2 - e^2) is e / sqrt(r^2 - e^2) dx / rho (e = rho - c; zero on
-    // the bottom).
-    const double rho = std::sqrt(r2), e = rho - s_.profile.ring();
-    st.floor_slope = e <= 0           ? 0.0
-                     : e < 0.9 * s_.R ? 2 * e * std::abs(dx) / (rho * std::sqrt(s_.R2 - e * e))
-                                      : INFINITY;
+    // The hull's: its slope in rho times dx / rho (zero inside the ring).
+    const double rho = std::sqrt(r2);
+    st.floor_slope = rho <= s_.profile.ring() ? 0.0
+                     : rho < s_.profile.rim_out(kSlopeOut)
+                         ? 2 * s_.profile.steepness(rho) * std::abs(dx) / rho
+                         : INFINITY;
   }
   return true;
 }

@@ -53,9 +53,9 @@ class ToothPassage : public TopographyEvaluator {
   bool follows(const ToolPath::Posture&) const override { return true; }
   // Any path: a bent pass is taken as straight windows (PassageSetup::Window).
   bool follows_curves() const override { return true; }
-  // The ball at any posture; every cutter whose section is its tube's circle (all but an insert
-  // with an axial rake), and per-edge runout (each edge walked as a cutter of its own), with a
-  // vertical axis: the profile over a node is then a function of its distance from the axis
+  // The ball at any posture; every cutter whose section is its tube's circle, sheared by an axial
+  // rake or not, and per-edge runout (each edge walked as a cutter of its own), with a vertical
+  // axis: the profile over a node is then a function of its distance from the axis
   // (cutter_profile.hpp).
   bool follows_cutter(const ToolGeometry& tool, const ToolPath::Runout& runout,
                       const ToolPath::Posture& posture) const override {

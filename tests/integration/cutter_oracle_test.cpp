@@ -3,7 +3,8 @@
 // node at distance rho from the axis when its azimuth there, theta_K + phi(t) + Psi(alpha(rho)),
 // equals the node's; the phase is scanned finely over the pass (finer still next to the rim),
 // every crossing is halved to round-off, and the lowest height of the edge at a crossing is the
-// node's. The Z-map samples
+// node's (an insert with an axial rake: the lowest of the section's points at rho, by a scan of
+// the section). The Z-map samples
 // time and edge: it must agree within the local slope times its cell.
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -39,6 +40,34 @@ EdgeAt edge_at(const ToolGeometry& tool, double rho, double out, double up) {
   return {std::asin(s), -r * std::sqrt(1 - s * s) + up};
 }
 
+// An insert tilted by an axial rake: its section is no circle, and may fold back on itself (what
+// lies past a fold is above the rest). Its lowest point at rho, by scanning the section at 4096
+// polar angles and halving each crossing of rho to round-off; NaN where the edge does not reach.
+bool sheared(const ToolGeometry& tool) {
+  return std::abs(tool.section(M_PI / 2).x() - tool.ring() - tool.radius()) > 1e-12;
+}
+double lowest_on_section(const ToolGeometry& tool, double rho, double out, double up) {
+  constexpr int kSamples = 4096;
+  const double a0 = tool.first_polar_angle();
+  auto off = [&](double a) { return tool.section(a).x() + out - rho; };
+  double best = NAN, a_prev = a0, f_prev = off(a0);
+  for (int k = 1; k <= kSamples; ++k) {
+    const double a = a0 + (M_PI / 2 - a0) * k / kSamples, f = off(a);
+    if (f_prev * f <= 0) {
+      double lo = a_prev, hi = a, f_lo = f_prev;
+      for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi), f_mid = off(mid);
+        (f_lo * f_mid <= 0 ? hi : lo) = mid;
+        if (f_lo * f_mid > 0) f_lo = f_mid;
+      }
+      const double z = tool.section(0.5 * (lo + hi)).y() + up;
+      if (!(z >= best)) best = z;
+    }
+    a_prev = a, f_prev = f;
+  }
+  return best;
+}
+
 // How far the Z-map may lie from the exact height, in steps to the nearest neighbour: half a
 // cell's diagonal is 0.71 of one.
 constexpr double kSlack = 0.75;
@@ -54,13 +83,19 @@ double oracle(const ToolGeometry& tool, const ToolPath& path, std::size_t p, dou
   const double rev = 2 * M_PI / std::abs(path.spindle_rate());
   const double dt = rev / 1000;  // the phase turns far less than a quarter turn a step
   double best = INFINITY;
+  // A sheared edge lies in a half-plane (round_insert.cpp): its lag is the same all along, and
+  // the phase needs no polar angle; its height is scanned at the crossings alone.
+  const bool shear = sheared(tool);
+  if (shear) REQUIRE(tool.lag(tool.first_polar_angle()) == tool.lag(M_PI / 2));
   for (int k = 0; k < tool.teeth(); ++k) {
     const double out = k * run.edge_radial, up = k * run.edge_axial;
     // The phase of tooth k's edge against the node's azimuth at t, wrapped to (-pi, pi].
     auto phase = [&](double t, EdgeAt* at) {
       const Vec3 c = path.centre(p, t);
       const double qx = x - c.x(), qy = y - c.y();
-      const EdgeAt e = edge_at(tool, std::hypot(qx, qy), out, up);
+      const double rho = std::hypot(qx, qy);
+      const EdgeAt e = !shear ? edge_at(tool, rho, out, up)
+                              : EdgeAt{0.0, at ? lowest_on_section(tool, rho, out, up) : NAN};
       if (at) *at = {e.alpha, e.height + c.z()};
       const double edge = tool.tooth_angle(k) + path.spindle_angle(p, t) + tool.lag(e.alpha);
       return std::remainder(edge - std::atan2(qy, qx), 2 * M_PI);
@@ -79,11 +114,11 @@ double oracle(const ToolGeometry& tool, const ToolPath& path, std::size_t p, dou
       phase(0.5 * (a + b), &at);
       if (!std::isnan(at.height)) best = std::min(best, at.height);
     };
-    EdgeAt at0;
-    double t0 = 0, g0 = phase(0, &at0);
+    EdgeAt at0{0.0, NAN};
+    double t0 = 0, g0 = phase(0, shear ? nullptr : &at0);
     for (double t1 = dt; t1 <= t_end; t1 += dt) {
       EdgeAt at1;
-      const double g1 = phase(t1, &at1);
+      const double g1 = phase(t1, shear ? nullptr : &at1);
       // Next to the rim the lag turns faster than the spindle, and a passage can cross the node
       // three times within a step: there (an edge at either end) the step is scanned at a 32nd
       // of itself.
@@ -160,6 +195,11 @@ std::vector<Case> cases() {
                {{"diameter", 1}, {"insert_radius", 0.5}},
                "",
                0.65},
+          Case{"round inserts with an axial rake, outer side",
+               "round_insert",
+               {{"diameter", 1}, {"insert_radius", 0.5}, {"axial_rake", 10}},
+               "",
+               0.65},
           Case{"ball end, per-edge runout",
                "ball_end_constant_lead",
                {{"radius", 1}},
@@ -177,64 +217,88 @@ const char* const kEffects =
     " {axis = 'z', frequency = 753.0, damping = 0.0215, stiffness = 1.21e7}]\n"
     "[deflection]\nplugin = 'cantilever'\noverhang = 6.0\n";
 std::vector<Case> hard_cases() {
-  return {Case{"flat end, sharp corner, the axis over the nodes",
-               "flat_end",
-               {{"diameter", 2}, {"corner_radius", 0}, {"teeth", 2}},
-               "",
-               0.0},
-          Case{"flat end on a plane inclined along the feed, the axis over the nodes",
-               "flat_end",
-               {{"diameter", 2}, {"corner_radius", 0.2}, {"teeth", 3}},
-               "",
-               0.0,
-               20.0},
-          Case{"flat end on an inclined plane, its bottom's rim a feed from its reach",
-               "flat_end",
-               {{"diameter", 2}, {"corner_radius", 0.05}, {"teeth", 2}, {"helix_angle", 30}},
-               "",
-               0.3,
-               10.0},
-          Case{"flat end on a steep incline, a passage crossing three times next to the rim",
-               "flat_end",
-               {{"diameter", 1.16818},
-                {"corner_radius", 0.0738491},
-                {"teeth", 4},
-                {"helix_angle", 27.1313}},
-               "",
-               0.382469,
-               17.9193,
-               0.322241},
-          Case{"flat end, the axis over the nodes, vibration and deflection",
-               "flat_end",
-               {{"diameter", 2}, {"corner_radius", 0.1}, {"teeth", 4}},
-               kEffects,
-               0.0},
-          Case{"bull-nose over its bottom's rim, vibration and deflection",
-               "bull_nose",
-               {{"diameter", 2}, {"corner_radius", 0.5}, {"teeth", 3}},
-               kEffects,
-               0.5},
-          Case{"bull-nose, on its corner, vibration and deflection",
-               "bull_nose",
-               {{"diameter", 2}, {"corner_radius", 0.5}, {"teeth", 2}},
-               kEffects,
-               0.75},
-          Case{"bull-nose on a small ring, steep helix, next to the axis",
-               "bull_nose",
-               {{"diameter", 2}, {"corner_radius", 0.98}, {"helix_angle", 60}, {"teeth", 2}},
-               "",
-               0.03},
-          Case{"round inserts reaching the axis, over it",
-               "round_insert",
-               {{"diameter", 1}, {"insert_radius", 0.5}, {"teeth", 3}},
-               "",
-               0.0},
-          Case{"round inserts, inner side, vibration and per-edge runout",
-               "round_insert",
-               {{"diameter", 1}, {"insert_radius", 0.5}},
-               std::string(kEffects) +
-                   "[runout]\nedge_radial_step = 0.005\nedge_axial_step = -0.0005\n",
-               0.25}};
+  return {
+      Case{"flat end, sharp corner, the axis over the nodes",
+           "flat_end",
+           {{"diameter", 2}, {"corner_radius", 0}, {"teeth", 2}},
+           "",
+           0.0},
+      Case{"flat end on a plane inclined along the feed, the axis over the nodes",
+           "flat_end",
+           {{"diameter", 2}, {"corner_radius", 0.2}, {"teeth", 3}},
+           "",
+           0.0,
+           20.0},
+      Case{"flat end on an inclined plane, its bottom's rim a feed from its reach",
+           "flat_end",
+           {{"diameter", 2}, {"corner_radius", 0.05}, {"teeth", 2}, {"helix_angle", 30}},
+           "",
+           0.3,
+           10.0},
+      Case{"flat end on a steep incline, a passage crossing three times next to the rim",
+           "flat_end",
+           {{"diameter", 1.16818},
+            {"corner_radius", 0.0738491},
+            {"teeth", 4},
+            {"helix_angle", 27.1313}},
+           "",
+           0.382469,
+           17.9193,
+           0.322241},
+      Case{"flat end, the axis over the nodes, vibration and deflection",
+           "flat_end",
+           {{"diameter", 2}, {"corner_radius", 0.1}, {"teeth", 4}},
+           kEffects,
+           0.0},
+      Case{"bull-nose over its bottom's rim, vibration and deflection",
+           "bull_nose",
+           {{"diameter", 2}, {"corner_radius", 0.5}, {"teeth", 3}},
+           kEffects,
+           0.5},
+      Case{"bull-nose, on its corner, vibration and deflection",
+           "bull_nose",
+           {{"diameter", 2}, {"corner_radius", 0.5}, {"teeth", 2}},
+           kEffects,
+           0.75},
+      Case{"bull-nose on a small ring, steep helix, next to the axis",
+           "bull_nose",
+           {{"diameter", 2}, {"corner_radius", 0.98}, {"helix_angle", 60}, {"teeth", 2}},
+           "",
+           0.03},
+      Case{"round inserts reaching the axis, over it",
+           "round_insert",
+           {{"diameter", 1}, {"insert_radius", 0.5}, {"teeth", 3}},
+           "",
+           0.0},
+      // Small inserts, so that the folds lie within the depth of cut (0.048 mm up); for the
+      // inner fold a feed so long that some nodes are crossed only there.
+      Case{"round inserts, a negative axial rake, past the edge's end to its outer fold",
+           "round_insert",
+           {{"diameter", 1}, {"insert_radius", 0.1}, {"axial_rake", -30}, {"teeth", 3}},
+           "",
+           0.565},
+      Case{"round inserts, a positive axial rake, its inner fold, sparse feed marks",
+           "round_insert",
+           {{"diameter", 1},
+            {"insert_radius", 0.1},
+            {"axial_rake", 30},
+            {"radial_rake", -6},
+            {"teeth", 1}},
+           "",
+           0.44,
+           0.0,
+           0.6},
+      Case{"round inserts with an axial rake, vibration and per-edge runout",
+           "round_insert",
+           {{"diameter", 1}, {"insert_radius", 0.5}, {"axial_rake", 8}},
+           std::string(kEffects) + "[runout]\nedge_radial_step = 0.004\nedge_axial_step = 0.0005\n",
+           0.3},
+      Case{
+          "round inserts, inner side, vibration and per-edge runout",
+          "round_insert",
+          {{"diameter", 1}, {"insert_radius", 0.5}},
+          std::string(kEffects) + "[runout]\nedge_radial_step = 0.005\nedge_axial_step = -0.0005\n",
+          0.25}};
 }
 
 // The exact heights over the scene's patch, from the pass through x = 0.

@@ -121,3 +121,19 @@ TEST_CASE("an insert's axial rake follows the projects' definition", "[tool][cut
     CHECK(s.y() + ri == Approx(z * std::cos(gp)).margin(1e-14));
   }
 }
+
+TEST_CASE("an insert reaches as far as its section's farthest point", "[tool][cutter]") {
+  // A negative axial rake folds the edge back before alpha = 90 deg: the reach is the section's
+  // widest, found here by scanning it; a positive one (or none) ends at 90 deg.
+  for (double rake : {-30.0, -8.0, 0.0, 8.0, 30.0}) {
+    auto tool = make_model<ToolGeometry>(
+        "round_insert", {{"diameter", 20}, {"insert_radius", 4}, {"axial_rake", rake}});
+    double widest = -INFINITY;
+    constexpr int kSamples = 200000;
+    for (int k = 0; k <= kSamples; ++k)
+      widest = std::max(widest, tool->section(M_PI / 2 * k / kSamples).x());
+    INFO("axial rake " << rake);
+    CHECK(tool->reach() == Approx(widest).epsilon(1e-10));
+    CHECK(tool->reach() >= widest - 1e-12);
+  }
+}

@@ -44,8 +44,9 @@ class TOPOMILL_API ToolGeometry : public Model {
   // The edge's section at alpha: distance from the axis and height in CS1. By default the tube's
   // circle, (c + r sin alpha, -r cos alpha); an insert tilted by an axial rake overrides it.
   virtual Vec2 section(double alpha) const;
-  // How far the edges reach from the axis (mm): the section at alpha = pi/2.
-  double reach() const { return section(M_PI / 2).x(); }
+  // How far the edges reach from the axis (mm): by default the section at alpha = pi/2; a section
+  // that folds back before it (an insert with a negative axial rake) overrides this.
+  virtual double reach() const { return section(M_PI / 2).x(); }
   // An end mill's side edge, on the cylinder of radius reach() above the tube's centre plane: its
   // lag falls by side_lead() rad per mm of height from lag(pi/2) (tan(helix) / (D/2)).
   virtual double side_lead() const { return 0.0; }
