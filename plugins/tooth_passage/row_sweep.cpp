@@ -312,8 +312,24 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
     const double floor = s_.window[geo.window()].lowest_nominal + s_.profile.up() - s_.R;
     if (geo.within(tp) && f(tp) <= floor) t_b = tp;
   }
+  // A split pass's side is often lowest at its end, the axis's closest approach, where a
+  // parabola's vertex lies beyond: the bound falling into that end over its last
+  // kBottomTolerance of a period has, unimodal, its lowest within that of the end, as close as
+  // the golden section finds it. Tried first where the last node's bottom was that end.
+  const double w = 0.1 * s_.period, tol = kBottomTolerance * s_.period;
+  auto at_end = [&](double end, double in, double f_end) {
+    return geo.within(end + in) && f(end + in) > f_end;
+  };
+  const bool was_end = st.tb_end;
+  st.tb_end = false;
+  if (std::isnan(t_b) && st.have_bottom && was_end && geo.split()) {
+    const double tp = st.tb + st.tb_rate * (x - st.tb_x);
+    const bool hi = std::abs(tp - geo.t_hi()) <= std::abs(tp - geo.t_lo());
+    const double end = hi ? geo.t_hi() : geo.t_lo();
+    if (std::abs(tp - end) <= w && at_end(end, hi ? -tol : tol, f(end))) t_b = end;
+  }
   if (std::isnan(t_b) && st.have_bottom) {
-    const double tp = st.tb + st.tb_rate * (x - st.tb_x), w = 0.1 * s_.period;
+    const double tp = st.tb + st.tb_rate * (x - st.tb_x);
     const double fm = f(tp - w), f0 = f(tp), fp = f(tp + w);
     const double curvature = fp - 2 * f0 + fm;
     if (curvature > 0) {
@@ -321,18 +337,12 @@ double RowSweep::bottom(F f, const PassageGeometry& geo, PassState& st, double x
       if (std::abs(shift) <= w) t_b = std::clamp(tp + shift, geo.t_lo(), geo.t_hi());
     }
     if (std::isnan(t_b) && geo.split()) {
-      // A split pass's side is often lowest at its end, the axis's closest approach, where the
-      // parabola's vertex lies beyond: the bound falling into that end over its last
-      // kBottomTolerance of a period has, unimodal, its lowest within that of the end, as close
-      // as the golden section finds it.
-      const double tol = kBottomTolerance * s_.period;
       const double end = fp < fm ? geo.t_hi() : geo.t_lo(), in = fp < fm ? -tol : tol;
       // (The last bottom was mostly that end: its height is f0 then.)
-      if (std::abs(tp - end) <= w && geo.within(end + in) &&
-          f(end + in) > (tp == end ? f0 : f(end)))
-        t_b = end;
+      if (std::abs(tp - end) <= w && at_end(end, in, tp == end ? f0 : f(end))) t_b = end;
     }
   }
+  if (geo.split() && (t_b == geo.t_hi() || t_b == geo.t_lo())) st.tb_end = true;
   if (std::isnan(t_b)) {
     if (std::isnan(t0())) return NAN;
     t_b = geo.bottom_near(f, t0());
