@@ -179,6 +179,8 @@ struct PassageSetup {
 
   // The window's time when its centre is level with (x, y) along the feed (secant steps).
   double level_time(std::size_t w, double x, double y) const;
+  // Whether level_time reads y alone (parallel passes along Y), the same all along a row.
+  bool level_by_y() const { return parallel && along_y; }
   // When its tip is: the centre level with (x, y) less the tip's offset (the level time for a
   // vertical tool).
   double tip_time(std::size_t w, double x, double y) const;

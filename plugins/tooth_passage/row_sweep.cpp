@@ -125,7 +125,13 @@ RowSweep::PassResult RowSweep::pass_height(std::size_t p, double x, double y, do
   PassState& st = state_[p];
   // The pass's level time is needed only off the fast path: found at most once.
   double level = -INFINITY;
-  auto t0 = [&] { return level == -INFINITY ? level = s_.level_time(p, x, y) : level; };
+  // On parallel passes along Y it depends on the node's y alone: found once a row.
+  auto t0 = [&] {
+    if (level != -INFINITY) return level;
+    if (!s_.level_by_y()) return level = s_.level_time(p, x, y);
+    if (!(st.level_y == y)) st.level_y = y, st.level_t = s_.level_time(p, x, y);
+    return level = st.level_t;
+  };
   if (!st.active) {
     if (std::isnan(t0())) return out;  // never level with this node: look further
     const auto radii = s_.contact_radii(p, t0());

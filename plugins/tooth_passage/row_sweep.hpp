@@ -33,6 +33,7 @@ class RowSweep {
     double rho_lo = 0, rho_hi = 0;  // the contact range (from the level time at the first node)
     bool have_bottom = false, tb_end = false;  // tb_end: the last bottom was a split side's end
     double tb = 0, tb_x = 0, tb_rate = 0;      // last bottom, where, and its rate along x
+    double level_y = NAN, level_t = NAN;       // the level time at a row's y (level_by_y)
     double floor = 0, floor_x = NAN;           // the last bottom found too high, and where
     double floor_slope = 0;                    // ideal: how fast that bottom can fall along the row
     // Per tooth, the last node's roots (ideal), or every passage between the stops at the last
