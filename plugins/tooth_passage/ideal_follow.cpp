@@ -133,7 +133,13 @@ inline bool IdealFollow::proven_to_cuts(double reach) {
 
 inline void IdealFollow::solve_zone() {
   const double t_b = t_b_, rev = rev_, reach = 0.8 * rev;
-  if (geo_.monotony(geo_.around(t_b, reach)).monotone || proven_to_cuts(reach)) return;
+  // Where the tube is narrower than the pass moves in that reach (a flat end's corner), the rim is
+  // within reach of wherever the cutter cuts, and a whole revolution is seldom proven monotone:
+  // the cuts are tried first.
+  const bool cuts_first = s_.window[geo_.window()].plan_line.speed * reach >= s_.profile.tube();
+  if (cuts_first && proven_to_cuts(reach)) return;
+  if (geo_.monotony(geo_.around(t_b, reach)).monotone || (!cuts_first && proven_to_cuts(reach)))
+    return;
   // Each edge as near t_b as the phase is proven monotone beyond it, by eighths of a revolution
   // (the axis's closest approach holds the turn-backs, so a whole revolution solved exactly is
   // mostly pieces far from it); from half a revolution out, by whole ones (below).
