@@ -25,6 +25,7 @@ double IdealFollow::run(double t_b, double best_node) {
   t_b_ = t_b, best_node_ = best_node, best_ = INFINITY;
   cut_[0] = cut_[1] = Cut{};
   scratch_.zone.clear();
+  seeded_ = false;
   zone_[0] = zone_[1] = t_b;
   solve_zone();
   for (int tooth = 0; tooth < s_.teeth; ++tooth) follow(tooth);
@@ -106,12 +107,15 @@ inline bool IdealFollow::nears_rim(double t, double reach) const {
 }
 
 inline void IdealFollow::seed_limit() {
+  scratch_.seeded.assign(static_cast<std::size_t>(s_.teeth), Seeded{});
+  seeded_ = true;
   for (int tooth = 0; tooth < s_.teeth; ++tooth) {
     const Root* near = nearest(roots_[static_cast<std::size_t>(tooth)], t_b_, 0.75 * rev_);
     if (!near) continue;
     double slope = near->slope;
     Probe q{};
     const double t = geo_.crossing(tooth, near->ahead(), slope, q);
+    scratch_.seeded[static_cast<std::size_t>(tooth)] = {near, t, slope, q};
     if (PassageGeometry::converged(q)) take(tooth, t, &q);
   }
 }
@@ -173,8 +177,12 @@ inline double IdealFollow::solve(int tooth, double guess, double reach, Probe& q
   matched = match;
   double slope = match ? match->slope : s_.omega;
   // Started where the root's last moves say it goes on to (Root::ahead: on smooth passes the
-  // guess is then often within the tolerance, and one probe settles it).
-  const double t = geo_.crossing(tooth, match ? match->ahead() : guess, slope, q);
+  // guess is then often within the tolerance, and one probe settles it); solved already where
+  // seed_limit started from the same root.
+  const Seeded* seeded = seeded_ ? &scratch_.seeded[static_cast<std::size_t>(tooth)] : nullptr;
+  const double t = match && seeded && seeded->from == match
+                       ? (slope = seeded->slope, q = seeded->q, seeded->t)
+                       : geo_.crossing(tooth, match ? match->ahead() : guess, slope, q);
   if (!PassageGeometry::converged(q)) return NAN;
   // The root kept for the next node is one more Newton step on (no probe): the probed time is up
   // to 1e-9 rad off, which the extrapolation amplifies, so that on smooth passes the next node's

@@ -24,10 +24,18 @@ namespace topomill::plugins {
 class IdealFollow {
  public:
   // Buffers reused from node to node, so that a node allocates nothing.
+  // A crossing solved from a last-node root (seed_limit), per tooth: a walk that starts from
+  // the same root takes it rather than solving it again (the solve is a function of the root).
+  struct Seeded {
+    const Root* from = nullptr;
+    double t = NAN, slope = 0;
+    Probe q{};
+  };
   struct Scratch {
     std::vector<Root> fresh;                             // the tooth in hand's roots here
     std::vector<PassageGeometry::Crossing> found, zone;  // an exact solve's, the zone's
     std::vector<PassageGeometry::Hint> hints;            // where the last node's roots lead
+    std::vector<Seeded> seeded;                          // this node's, by tooth
   };
   // `roots`: per tooth, the last node's roots on this window (sorted by time); replaced by this
   // node's.
@@ -120,6 +128,7 @@ class IdealFollow {
   double t_b_ = 0, best_node_ = 0, best_ = 0;
   std::uint64_t visited_ = 0;
   bool exact_used_ = false;
+  bool seeded_ = false;  // whether scratch_.seeded holds this node's (seed_limit ran)
   // The zone [zone_[0], zone_[1]] around t_b solved for all teeth, empty when the phase is proven
   // monotone around t_b (then each tooth's first crossing is followed from the last node's).
   double zone_[2] = {0, 0};
