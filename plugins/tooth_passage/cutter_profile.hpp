@@ -186,11 +186,13 @@ class CutterProfile {
     return {sin_p, cos_p};
   }
   // at() on a sheared section (an insert has no bottom). Out of line: the probe is the walks' hot
-  // path, and its inlining on the circle is what their speed rests on.
+  // path, and its inlining on the circle is what their speed rests on. A fold itself (q = 0, a
+  // single distance) counts as no edge, so that the slope stays finite.
   [[gnu::noinline]] Point sheared_at(double rho) const {
-    const double s = (rho - c_) / r_;
-    if (!(s < x_hi_) || rho < start_) return {false, 0.0, s < 0 ? -1.0 : 1.0, 0.0, 0.0, 0.0};
-    const double q = std::sqrt(std::max(0.0, 1 + s * (2 * sp_ - s))), w = s * s / (1 + s * sp_ + q);
+    const double s = (rho - c_) / r_, q = std::sqrt(std::max(0.0, 1 + s * (2 * sp_ - s)));
+    if (!(s < x_hi_) || rho < start_ || !(q > 0))
+      return {false, 0.0, s < 0 ? -1.0 : 1.0, 0.0, 0.0, 0.0};
+    const double w = s * s / (1 + s * sp_ + q);
     const double sin_a = s - w * sp_;
     return {true, r_ * (1 - cp_ * w), sin_a, 1 - w, q, cp_ * sin_a / q};
   }
