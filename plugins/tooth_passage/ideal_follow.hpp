@@ -23,7 +23,6 @@ namespace topomill::plugins {
 
 class IdealFollow {
  public:
-  // Buffers reused from node to node, so that a node allocates nothing.
   // A crossing solved from a last-node root (seed_limit), per tooth: a walk that starts from
   // the same root takes it rather than solving it again (the solve is a function of the root).
   struct Seeded {
@@ -31,6 +30,7 @@ class IdealFollow {
     double t = NAN, slope = 0;
     Probe q{};
   };
+  // Buffers reused from node to node, so that a node allocates nothing.
   struct Scratch {
     std::vector<Root> fresh;                             // the tooth in hand's roots here
     std::vector<PassageGeometry::Crossing> found, zone;  // an exact solve's, the zone's
