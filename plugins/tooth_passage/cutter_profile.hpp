@@ -150,10 +150,9 @@ class CutterProfile {
     const double e = rho - c_;
     if (e <= 0 && bottom_) return 0.0;
     if (raked_) {
-      const double s = e / r_, d = 1 + s * (2 * sp_ - s);
-      if (!(d > 0)) return INFINITY;
-      const double q = std::sqrt(d), w = s * s / (1 + s * sp_ + q);
-      return cp_ * std::abs(s - w * sp_) / q;
+      const double s = e / r_;
+      const Lower l = lower(s);
+      return l.q > 0 ? cp_ * std::abs(s - l.w * sp_) / l.q : INFINITY;
     }
     const double s = std::min(std::abs(e) / r_, 1.0);
     return s / std::sqrt(1 - s * s);
@@ -189,10 +188,10 @@ class CutterProfile {
   // path, and its inlining on the circle is what their speed rests on. A fold itself (q = 0, a
   // single distance) counts as no edge, so that the slope stays finite.
   [[gnu::noinline]] Point sheared_at(double rho) const {
-    const double s = (rho - c_) / r_, q = std::sqrt(std::max(0.0, 1 + s * (2 * sp_ - s)));
+    const double s = (rho - c_) / r_;
+    const auto [q, w] = lower(s);
     if (!(s < x_hi_) || rho < start_ || !(q > 0))
       return {false, 0.0, s < 0 ? -1.0 : 1.0, 0.0, 0.0, 0.0};
-    const double w = s * s / (1 + s * sp_ + q);
     const double sin_a = s - w * sp_;
     return {true, r_ * (1 - cp_ * w), sin_a, 1 - w, q, cp_ * sin_a / q};
   }
@@ -205,9 +204,17 @@ class CutterProfile {
   // The raked section's depth at X (units of r from the ring), its lower root within its widest
   // and falling at slope 1 beyond.
   double section_depth(double s) const {
-    const double wide = std::sqrt(1 + sp_ * sp_), lo = sp_ - wide, hi = sp_ + wide;
-    const double x = std::clamp(s, lo, hi), q = std::sqrt(std::max(0.0, 1 + x * (2 * sp_ - x)));
-    return r_ * (1 - cp_ * x * x / (1 + x * sp_ + q)) - r_ * std::abs(s - x);
+    const double wide = std::sqrt(1 + sp_ * sp_), x = std::clamp(s, sp_ - wide, sp_ + wide);
+    return r_ * (1 - cp_ * lower(x).w) - r_ * std::abs(s - x);
+  }
+  // The lower root at X = s (units of r): q = dX/dalpha (0 at and past the section's widest) and
+  // w = 1 - cos(alpha) = Z / cp, written without the cancellation of 1 + X sp - q.
+  struct Lower {
+    double q, w;
+  };
+  Lower lower(double s) const {
+    const double q = std::sqrt(std::max(0.0, 1 + s * (2 * sp_ - s)));
+    return {q, s * s / (1 + s * sp_ + q)};
   }
   double r_, c_, up_, sp_, cp_;
   bool raked_, bottom_, inner_;
