@@ -3,12 +3,17 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 namespace testing {
 
 namespace {
 constexpr double kTwoPi = 2 * M_PI;
+// A revolution is left out when its sphere stays this far above the lowest crossing found: the
+// sphere's lowest is sampled, not solved.
+constexpr double kSlack = 1e-3;
 double wrap(double a) {
   return a - kTwoPi * std::floor(a / kTwoPi + 0.5);
 }
@@ -46,102 +51,175 @@ topomill::Vec3 posture_axis(const topomill::ToolPath& path, std::size_t p, doubl
       .normalized();
 }
 
-double brute_force_height(const topomill::ToolGeometry& tool, const topomill::ToolPath& path,
-                          double x, double y) {
-  const double R = tool.radius(), rev = kTwoPi / std::abs(path.spindle_rate());
-  const double uncut = path.surface().height(y);
+namespace {
+
+// One node's search: the ball over the node, the edge-minus-node azimuth, and the scans.
+class NodeSearch {
+ public:
+  NodeSearch(const topomill::ToolGeometry& tool, const topomill::ToolPath& path, double x, double y)
+      : tool_(tool),
+        path_(path),
+        x_(x),
+        y_(y),
+        R_(tool.radius()),
+        rev_(kTwoPi / std::abs(path.spindle_rate())),
+        uncut_(path.surface().height(y)),
+        v_(plan_speed(path)),
+        best_(uncut_) {}
+
+  double lowest() {
+    for (const Revolution& r : revolutions()) {
+      if (r.bound >= best_ + kSlack) break;  // sorted: the rest stay above too
+      for (int tooth = 0; tooth < tool_.teeth(); ++tooth) scan(r, tooth);
+    }
+    return best_;
+  }
+
+ private:
+  // A revolution is cut into slices, each with the lowest the sphere can be over the node in it:
+  // the centre's lowest at the slice's ends (it descends along a slope, 2.6 um a revolution at
+  // 0.5 deg) below the nearest the centre comes in plan (its distance at mid slice less what the
+  // fastest plan speed covers in half a slice).
+  static constexpr int kSlices = 64;
+  struct Revolution {
+    double bound;  // the lowest of its slices'
+    std::size_t pass;
+    double start, end;
+    std::array<double, kSlices> slice;
+  };
+
   // Fastest the centre moves in plan: the feed (plus the offset's turn on a curve, within 10 %)
   // and the correction's steepest piece.
-  double v =
-      1.1 * path.feed_speed() * (1 + path.offset() / std::abs(path.surface().curvature_radius()));
-  for (std::size_t p = 0; p < path.passes(); ++p) {
-    const auto& c = path.correction_samples(p);
-    for (std::size_t k = 0; k + 1 < c.values.size(); ++k)
-      v = std::max(v, path.feed_speed() + std::hypot(c.values[k + 1].x() - c.values[k].x(),
-                                                     c.values[k + 1].y() - c.values[k].y()) /
-                                              c.dt);
+  static double plan_speed(const topomill::ToolPath& path) {
+    double v =
+        1.1 * path.feed_speed() * (1 + path.offset() / std::abs(path.surface().curvature_radius()));
+    for (std::size_t p = 0; p < path.passes(); ++p) {
+      const auto& c = path.correction_samples(p);
+      for (std::size_t k = 0; k + 1 < c.values.size(); ++k)
+        v = std::max(v, path.feed_speed() + std::hypot(c.values[k + 1].x() - c.values[k].x(),
+                                                       c.values[k + 1].y() - c.values[k].y()) /
+                                                c.dt);
+    }
+    return v;
   }
-  double best = uncut;
-  // rho: the ball point's distance from the tool's axis (in plan for a vertical tool).
-  auto phase = [&](std::size_t p, int tooth, double t, double& height, double& rho) {
-    const topomill::Vec3 c = path.centre(p, t);
-    double qx = x - c.x(), qy = y - c.y();
+
+  // Every revolution in which the sphere can reach below the uncut surface, lowest bound first,
+  // so that the first crossings found are low and what stays above them is left out.
+  std::vector<Revolution> revolutions() const {
+    std::vector<Revolution> out;
+    for (std::size_t p = 0; p < path_.passes(); ++p)
+      for (double r0 = 0; r0 < path_.pass(p).t_end; r0 += rev_) {
+        Revolution r{INFINITY, p, r0, std::min(r0 + rev_, path_.pass(p).t_end), {}};
+        const double width = (r.end - r.start) / kSlices;
+        double z0 = path_.centre(p, r.start).z();
+        for (int k = 0; k < kSlices; ++k) {
+          const topomill::Vec3 mid = path_.centre(p, r.start + (k + 0.5) * width);
+          const double z1 = path_.centre(p, r.start + (k + 1) * width).z();
+          const double reach = std::hypot(x_ - mid.x(), y_ - mid.y()) - v_ * width / 2;
+          r.slice[k] = reach >= R_ ? INFINITY
+                                   : std::min({z0, z1, mid.z()}) -
+                                         std::sqrt(R_ * R_ - std::pow(std::max(reach, 0.0), 2));
+          r.bound = std::min(r.bound, r.slice[k]);
+          z0 = z1;
+        }
+        if (r.bound < uncut_ + kSlack) out.push_back(r);
+      }
+    std::sort(out.begin(), out.end(),
+              [](const Revolution& a, const Revolution& b) { return a.bound < b.bound; });
+    return out;
+  }
+
+  // The ball point over the node at t: its height, its distance rho from the tool's axis (in
+  // plan for a vertical tool), and the edge's azimuth less the node's.
+  double phase(std::size_t p, int tooth, double t, double& height, double& rho) const {
+    const topomill::Vec3 c = path_.centre(p, t);
+    double qx = x_ - c.x(), qy = y_ - c.y();
     const double plan = std::hypot(qx, qy);
-    if (plan >= R) return rho = plan, height = INFINITY, 0.0;
-    height = c.z() - std::sqrt(R * R - plan * plan);
-    double alpha = std::asin(plan / R);
+    if (plan >= R_) return rho = plan, height = INFINITY, 0.0;
+    height = c.z() - std::sqrt(R_ * R_ - plan * plan);
+    double alpha = std::asin(plan / R_);
     rho = plan;
-    if (!path.pass(p).posture.vertical()) {
+    if (!path_.pass(p).posture.vertical()) {
       // The ball point in the tool frame: x_t the workpiece's X projected normal to the axis,
       // y_t = a x x_t, polar angle from the tip (-a); beyond the tool's equator no edge.
-      const topomill::Vec3 a = posture_axis(path, p, t);
+      const topomill::Vec3 a = posture_axis(path_, p, t);
       const topomill::Vec3 xt = (topomill::Vec3(1, 0, 0) - a.x() * a).normalized();
       const topomill::Vec3 yt = a.cross(xt), d(qx, qy, height - c.z());
       if (d.dot(a) > 0) return height = INFINITY, 0.0;
       qx = d.dot(xt), qy = d.dot(yt), rho = std::hypot(qx, qy);
-      alpha = std::acos(std::clamp(-d.dot(a) / R, -1.0, 1.0));
+      alpha = std::acos(std::clamp(-d.dot(a) / R_, -1.0, 1.0));
     }
-    const topomill::Vec3 e = tool.edge_point(tooth, alpha, path.spindle_angle(p, t));
+    const topomill::Vec3 e = tool_.edge_point(tooth, alpha, path_.spindle_angle(p, t));
     return wrap(std::atan2(e.y(), e.x()) - std::atan2(qy, qx));
-  };
-  for (std::size_t p = 0; p < path.passes(); ++p) {
-    const double t_end = path.pass(p).t_end;
-    for (int tooth = 0; tooth < tool.teeth(); ++tooth) {
-      // Revolution by revolution, those in which the ball can reach below the uncut surface.
-      for (double r0 = 0; r0 < t_end; r0 += rev) {
-        const topomill::Vec3 c = path.centre(p, r0 + rev / 2);
-        const double reach = std::hypot(x - c.x(), y - c.y()) - v * rev / 2;
-        // The centre's lowest point in the revolution: it descends along a slope (2.6 um a
-        // revolution at 0.5 deg), so its height at mid revolution is no bound.
-        double z_low = c.z();
-        for (int k = 0; k <= 64; ++k)
-          z_low = std::min(z_low, path.centre(p, r0 + k * rev / 64).z());
-        if (reach >= R ||
-            z_low - std::sqrt(R * R - std::pow(std::max(reach, 0.0), 2)) >= best + 1e-3)
-          continue;
-        double t0 = r0, h0 = 0, rho0 = 0, g0 = phase(p, tooth, t0, h0, rho0);
-        const double r1 = std::min(r0 + rev, t_end);
-        while (t0 < r1) {
-          // A fiftieth of a radian of the node's azimuth, a 4096th of a revolution: a step of a
-          // fiftieth (1024th) lost a pair of crossings 24 nm below the rest with vibration.
-          const double step = std::clamp(0.005 * rho0 / v, 1e-10 * rev, rev / 4096);
-          const double t1 = std::min(t0 + step, r1);
-          double h1 = 0, rho1 = 0;
-          const double g1 = phase(p, tooth, t1, h1, rho1);
-          if ((g0 < 0) != (g1 < 0) && std::abs(g1 - g0) < M_PI) {
-            double lo = t0, hi = t1, glo = g0;
-            for (int it = 0; it < 60; ++it) {
-              const double mid = 0.5 * (lo + hi);
-              double hm = 0, rm = 0;
-              const double gm = phase(p, tooth, mid, hm, rm);
-              ((gm < 0) == (glo < 0) ? lo : hi) = mid;
-              if ((gm < 0) == (glo < 0)) glo = gm;
-            }
-            double hr = 0, rr = 0;
-            phase(p, tooth, 0.5 * (lo + hi), hr, rr);
-            best = std::min(best, hr);
-          }
-          // The tip is a point of every edge: a node on the line the tip follows is cut by it
-          // (the pass's line for a vertical tool; R a off it in plan for a tilted one, where the
-          // ball point over the node moves up to 1 / cos(alpha) as fast as the centre, alpha
-          // the tilt from the vertical).
-          if (path.pass(p).posture.vertical()) {
-            // (CL data's passes go anywhere: there the axis over the node is the test itself.)
-            const bool on_line =
-                !path.pass(p).waypoints.empty() || std::abs(x - path.pass(p).x) < 1e-9;
-            if (on_line && rho1 < v * step) best = std::min(best, h1);
-          } else {
-            const topomill::Vec3 a = posture_axis(path, p, t1), at = path.centre(p, t1);
-            const bool along_y = path.pass(p).dy != 0;
-            const double across = along_y ? x - (at.x() - R * a.x()) : y - (at.y() - R * a.y());
-            if (std::abs(across) < 1e-9 && rho1 < v * step / a.z()) best = std::min(best, h1);
-          }
-          t0 = t1, g0 = g1, rho0 = rho1;
-        }
+  }
+
+  // One tooth over one revolution, slice by slice: a slice whose sphere stays above the lowest
+  // found is left out (any crossing in it would be higher); in the others every sign change of
+  // the phase is bisected.
+  void scan(const Revolution& r, int tooth) {
+    const double width = (r.end - r.start) / kSlices;
+    for (int k = 0; k < kSlices; ++k) {
+      if (r.slice[k] >= best_ + kSlack) continue;
+      double t0 = r.start + k * width, h0 = 0, rho0 = 0;
+      const double t_end = k + 1 == kSlices ? r.end : r.start + (k + 1) * width;
+      double g0 = phase(r.pass, tooth, t0, h0, rho0);
+      while (t0 < t_end) {
+        // A fiftieth of a radian of the node's azimuth, a 4096th of a revolution: a step of a
+        // fiftieth (1024th) lost a pair of crossings 24 nm below the rest with vibration.
+        const double step = std::clamp(0.005 * rho0 / v_, 1e-10 * rev_, rev_ / 4096);
+        const double t1 = std::min(t0 + step, t_end);
+        double h1 = 0, rho1 = 0;
+        const double g1 = phase(r.pass, tooth, t1, h1, rho1);
+        if ((g0 < 0) != (g1 < 0) && std::abs(g1 - g0) < M_PI)
+          best_ = std::min(best_, bisect(r.pass, tooth, t0, t1, g0));
+        tip(r.pass, t1, step, h1, rho1);
+        t0 = t1, g0 = g1, rho0 = rho1;
       }
     }
   }
-  return best;
+
+  // The crossing's height, its time halved 60 times.
+  double bisect(std::size_t p, int tooth, double lo, double hi, double glo) const {
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      double hm = 0, rm = 0;
+      const double gm = phase(p, tooth, mid, hm, rm);
+      ((gm < 0) == (glo < 0) ? lo : hi) = mid;
+      if ((gm < 0) == (glo < 0)) glo = gm;
+    }
+    double height = 0, rho = 0;
+    phase(p, tooth, 0.5 * (lo + hi), height, rho);
+    return height;
+  }
+
+  // The tip is a point of every edge: a node on the line the tip follows is cut by it (the pass's
+  // line for a vertical tool; R a off it in plan for a tilted one, where the ball point over the
+  // node moves up to 1 / cos(alpha) as fast as the centre, alpha the tilt from the vertical).
+  void tip(std::size_t p, double t, double step, double height, double rho) {
+    if (path_.pass(p).posture.vertical()) {
+      // (CL data's passes go anywhere: there the axis over the node is the test itself.)
+      const bool on_line =
+          !path_.pass(p).waypoints.empty() || std::abs(x_ - path_.pass(p).x) < 1e-9;
+      if (on_line && rho < v_ * step) best_ = std::min(best_, height);
+    } else {
+      const topomill::Vec3 a = posture_axis(path_, p, t), at = path_.centre(p, t);
+      const bool along_y = path_.pass(p).dy != 0;
+      const double across = along_y ? x_ - (at.x() - R_ * a.x()) : y_ - (at.y() - R_ * a.y());
+      if (std::abs(across) < 1e-9 && rho < v_ * step / a.z()) best_ = std::min(best_, height);
+    }
+  }
+
+  const topomill::ToolGeometry& tool_;
+  const topomill::ToolPath& path_;
+  const double x_, y_, R_, rev_, uncut_, v_;
+  double best_;
+};
+
+}  // namespace
+
+double brute_force_height(const topomill::ToolGeometry& tool, const topomill::ToolPath& path,
+                          double x, double y) {
+  return NodeSearch(tool, path, x, y).lowest();
 }
 
 }  // namespace testing
