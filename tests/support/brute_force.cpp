@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <vector>
 
@@ -11,9 +10,11 @@ namespace testing {
 
 namespace {
 constexpr double kTwoPi = 2 * M_PI;
-// A revolution is left out when its sphere stays this far above the lowest crossing found: the
-// sphere's lowest is sampled, not solved.
-constexpr double kSlack = 1e-3;
+// A slice is left out when its sphere's lowest stays this far above the lowest crossing found:
+// round-off in the bound, which is otherwise strict.
+constexpr double kSlack = 1e-9;
+// Speeds are bounded with 10 % to spare: the ball centre's turn on a curve and the tool frame's.
+constexpr double kSpeedMargin = 1.1;
 double wrap(double a) {
   return a - kTwoPi * std::floor(a / kTwoPi + 0.5);
 }
@@ -65,6 +66,7 @@ class NodeSearch {
         rev_(kTwoPi / std::abs(path.spindle_rate())),
         uncut_(path.surface().height(y)),
         v_(plan_speed(path)),
+        speed_(centre_speed(path)),
         best_(uncut_) {}
 
   double lowest() {
@@ -77,22 +79,21 @@ class NodeSearch {
 
  private:
   // A revolution is cut into slices, each with the lowest the sphere can be over the node in it:
-  // the centre's lowest at the slice's ends (it descends along a slope, 2.6 um a revolution at
-  // 0.5 deg) below the nearest the centre comes in plan (its distance at mid slice less what the
-  // fastest plan speed covers in half a slice).
-  static constexpr int kSlices = 64;
+  // with the centre anywhere within what its fastest speed covers in half a slice of where it is
+  // at mid slice, the sphere over the node is at least that much lower and nearer.
+  static constexpr int kSlices = 1024;
   struct Revolution {
     double bound;  // the lowest of its slices'
     std::size_t pass;
     double start, end;
-    std::array<double, kSlices> slice;
+    std::size_t first;  // its slices' bounds in slices_, from here
   };
 
-  // Fastest the centre moves in plan: the feed (plus the offset's turn on a curve, within 10 %)
-  // and the correction's steepest piece.
+  // Fastest the centre moves in plan, for the scan's steps: the feed (plus the offset's turn on a
+  // curve, within 10 %) and the correction's steepest piece.
   static double plan_speed(const topomill::ToolPath& path) {
-    double v =
-        1.1 * path.feed_speed() * (1 + path.offset() / std::abs(path.surface().curvature_radius()));
+    double v = kSpeedMargin * path.feed_speed() *
+               (1 + path.offset() / std::abs(path.surface().curvature_radius()));
     for (std::size_t p = 0; p < path.passes(); ++p) {
       const auto& c = path.correction_samples(p);
       for (std::size_t k = 0; k + 1 < c.values.size(); ++k)
@@ -103,26 +104,45 @@ class NodeSearch {
     return v;
   }
 
+  // Fastest the centre moves in space, for the slices' bounds: the fastest feed along the path
+  // (each CL segment has its own) on the offset surface, the runout's circle and the
+  // correction's steepest piece (it is interpolated linearly between its samples).
+  static double centre_speed(const topomill::ToolPath& path) {
+    double feed = path.feed_speed(), correction = 0;
+    for (std::size_t p = 0; p < path.passes(); ++p) {
+      for (const auto& w : path.pass(p).waypoints) feed = std::max(feed, w.speed);
+      const auto& c = path.correction_samples(p);
+      for (std::size_t k = 0; k + 1 < c.values.size(); ++k)
+        correction = std::max(correction, (c.values[k + 1] - c.values[k]).norm() / c.dt);
+    }
+    const double turn = 1 + std::abs(path.offset() / path.surface().curvature_radius());
+    return kSpeedMargin *
+           (feed * turn + path.runout().offset * std::abs(path.spindle_rate()) + correction);
+  }
+
   // Every revolution in which the sphere can reach below the uncut surface, lowest bound first,
   // so that the first crossings found are low and what stays above them is left out.
-  std::vector<Revolution> revolutions() const {
+  std::vector<Revolution> revolutions() {
     std::vector<Revolution> out;
     for (std::size_t p = 0; p < path_.passes(); ++p)
       for (double r0 = 0; r0 < path_.pass(p).t_end; r0 += rev_) {
-        Revolution r{INFINITY, p, r0, std::min(r0 + rev_, path_.pass(p).t_end), {}};
-        const double width = (r.end - r.start) / kSlices;
-        double z0 = path_.centre(p, r.start).z();
+        Revolution r{INFINITY, p, r0, std::min(r0 + rev_, path_.pass(p).t_end), slices_.size()};
+        const topomill::Vec3 c = path_.centre(p, (r.start + r.end) / 2);
+        if (std::hypot(x_ - c.x(), y_ - c.y()) - speed_ * (r.end - r.start) / 2 >= R_) continue;
+        const double width = (r.end - r.start) / kSlices, moved = speed_ * width / 2;
         for (int k = 0; k < kSlices; ++k) {
           const topomill::Vec3 mid = path_.centre(p, r.start + (k + 0.5) * width);
-          const double z1 = path_.centre(p, r.start + (k + 1) * width).z();
-          const double reach = std::hypot(x_ - mid.x(), y_ - mid.y()) - v_ * width / 2;
-          r.slice[k] = reach >= R_ ? INFINITY
-                                   : std::min({z0, z1, mid.z()}) -
-                                         std::sqrt(R_ * R_ - std::pow(std::max(reach, 0.0), 2));
-          r.bound = std::min(r.bound, r.slice[k]);
-          z0 = z1;
+          const double reach = std::hypot(x_ - mid.x(), y_ - mid.y()) - moved;
+          slices_.push_back(reach >= R_
+                                ? INFINITY
+                                : mid.z() - moved -
+                                      std::sqrt(R_ * R_ - std::pow(std::max(reach, 0.0), 2)));
+          r.bound = std::min(r.bound, slices_.back());
         }
-        if (r.bound < uncut_ + kSlack) out.push_back(r);
+        if (r.bound < uncut_ + kSlack)
+          out.push_back(r);
+        else
+          slices_.resize(r.first);
       }
     std::sort(out.begin(), out.end(),
               [](const Revolution& a, const Revolution& b) { return a.bound < b.bound; });
@@ -159,7 +179,7 @@ class NodeSearch {
   void scan(const Revolution& r, int tooth) {
     const double width = (r.end - r.start) / kSlices;
     for (int k = 0; k < kSlices; ++k) {
-      if (r.slice[k] >= best_ + kSlack) continue;
+      if (slices_[r.first + k] >= best_ + kSlack) continue;
       double t0 = r.start + k * width, h0 = 0, rho0 = 0;
       const double t_end = k + 1 == kSlices ? r.end : r.start + (k + 1) * width;
       double g0 = phase(r.pass, tooth, t0, h0, rho0);
@@ -211,7 +231,8 @@ class NodeSearch {
 
   const topomill::ToolGeometry& tool_;
   const topomill::ToolPath& path_;
-  const double x_, y_, R_, rev_, uncut_, v_;
+  const double x_, y_, R_, rev_, uncut_, v_, speed_;
+  std::vector<double> slices_;
   double best_;
 };
 

@@ -1,10 +1,10 @@
 // The lowest edge height over a node, by brute force: every pass, every tooth, the time the ball
 // can be below the uncut surface sampled finely (finer near the axis, where the node's azimuth
 // turns at v / rho), the edge taken from ToolGeometry::edge_point (docs/model.md Eq. 1-7, not an
-// evaluator's own formula), every sign change of the edge-minus-node azimuth bisected. No bound
-// within a revolution: a whole revolution is left out only when the ball's sphere stays 1 um above
-// the lowest crossing found (revolutions are visited lowest sphere first). Used by the near-axis,
-// the kinematics, the runout, the CL and the posture tests.
+// evaluator's own formula), every sign change of the edge-minus-node azimuth bisected. The only
+// thing left out is time in which the ball's sphere itself stays above the lowest crossing found:
+// each 64th of a revolution is bounded by the centre's fastest speed, and revolutions are visited
+// lowest bound first. Used by the near-axis, kinematics, runout, CL and posture tests.
 //
 // A tilted tool (ToolPath::Pass::posture) is followed with a tool frame built here from the
 // posture's definition (docs/model.md, "Tool posture"), not from ToolPath::tool_frame: the ball
