@@ -1,5 +1,5 @@
 // tooth_passage where the tool's axis passes over the nodes (lambda near 0), against the brute
-// force of support/brute_force.hpp at every node (no bound, no stopping rule).
+// force of support/brute_force.hpp at every node (no rule but what the ball's own sphere proves).
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <cmath>
