@@ -105,12 +105,19 @@ class NodeSearch {
   }
 
   // Fastest the centre moves in space, for the slices' bounds: the fastest feed along the path
-  // (each CL segment has its own) on the offset surface, the runout's circle and the
-  // correction's steepest piece (it is interpolated linearly between its samples).
+  // (each CL segment has its own; a pass along Y keeps its plan speed, so on a face inclined by
+  // lambda it moves 1 / cos(lambda) as fast) on the offset surface, the runout's circle and the
+  // correction's steepest chord (it is interpolated linearly between its samples).
   static double centre_speed(const topomill::ToolPath& path) {
     double feed = path.feed_speed(), correction = 0;
     for (std::size_t p = 0; p < path.passes(); ++p) {
       for (const auto& w : path.pass(p).waypoints) feed = std::max(feed, w.speed);
+      if (path.pass(p).waypoints.empty() && path.pass(p).dy != 0)
+        for (int k = 0; k <= kInclinationSamples; ++k) {
+          const double t = path.pass(p).t_end * k / kInclinationSamples;
+          const double lambda = path.surface().inclination(path.surface_y(p, t));
+          feed = std::max(feed, path.feed_speed() / std::cos(lambda));
+        }
       const auto& c = path.correction_samples(p);
       for (std::size_t k = 0; k + 1 < c.values.size(); ++k)
         correction = std::max(correction, (c.values[k + 1] - c.values[k]).norm() / c.dt);
@@ -119,6 +126,8 @@ class NodeSearch {
     return kSpeedMargin *
            (feed * turn + path.runout().offset * std::abs(path.spindle_rate()) + correction);
   }
+  // The inclination along a pass, sampled: it varies slowly (a 10 % margin covers the samples).
+  static constexpr int kInclinationSamples = 256;
 
   // Every revolution in which the sphere can reach below the uncut surface, lowest bound first,
   // so that the first crossings found are low and what stays above them is left out.
