@@ -184,11 +184,17 @@ class NodeSearch {
 
   // One tooth over one revolution, slice by slice: a slice whose sphere stays above the lowest
   // found is left out (any crossing in it would be higher); in the others every sign change of
-  // the phase is bisected.
+  // the phase is bisected, and every dip of |phase| between two samples is searched for the pair
+  // of crossings a grazing edge makes (closer together than any step).
   void scan(const Revolution& r, int tooth) {
     const double width = (r.end - r.start) / kSlices;
+    bool before = false;  // (ta, ga): the sample before t0, in a slice scanned just before
+    double ta = 0, ga = 0;
     for (int k = 0; k < kSlices; ++k) {
-      if (slices_[r.first + k] >= best_ + kSlack) continue;
+      if (slices_[r.first + k] >= best_ + kSlack) {
+        before = false;
+        continue;
+      }
       double t0 = r.start + k * width, h0 = 0, rho0 = 0;
       const double t_end = k + 1 == kSlices ? r.end : r.start + (k + 1) * width;
       double g0 = phase(r.pass, tooth, t0, h0, rho0);
@@ -201,10 +207,42 @@ class NodeSearch {
         const double g1 = phase(r.pass, tooth, t1, h1, rho1);
         if ((g0 < 0) != (g1 < 0) && std::abs(g1 - g0) < M_PI)
           best_ = std::min(best_, bisect(r.pass, tooth, t0, t1, g0));
+        else if (before && dips(ga, g0, g1))
+          graze(r.pass, tooth, ta, t1, g0);
         tip(r.pass, t1, step, h1, rho1);
+        ta = t0, ga = g0, before = true;
         t0 = t1, g0 = g1, rho0 = rho1;
       }
     }
+  }
+
+  // |g| at its smallest at the middle of three samples of one sign, near zero: the edge may
+  // have touched the node's azimuth and turned back between them.
+  static bool dips(double ga, double gb, double gc) {
+    return (ga < 0) == (gb < 0) && (gb < 0) == (gc < 0) && std::abs(gb) <= std::abs(ga) &&
+           std::abs(gb) <= std::abs(gc) && std::abs(gb) < kGraze;
+  }
+  static constexpr double kGraze = 0.1;  // rad
+
+  // The phase's extreme toward zero in [lo, hi] by golden section; where it passes zero, its two
+  // crossings, each bisected.
+  void graze(std::size_t p, int tooth, double lo, double hi, double g_mid) {
+    const double sense = g_mid < 0 ? -1.0 : 1.0, golden = 0.5 * (std::sqrt(5.0) - 1);
+    auto signed_phase = [&](double t) {
+      double h = 0, rho = 0;
+      return sense * phase(p, tooth, t, h, rho);
+    };
+    double a = lo, b = hi, c = b - golden * (b - a), d = a + golden * (b - a);
+    double fc = signed_phase(c), fd = signed_phase(d);
+    for (int it = 0; it < 100 && b - a > 1e-13 * rev_; ++it) {
+      if (fc < fd)
+        b = d, d = c, fd = fc, c = b - golden * (b - a), fc = signed_phase(c);
+      else
+        a = c, c = d, fc = fd, d = a + golden * (b - a), fd = signed_phase(d);
+    }
+    const double t = 0.5 * (a + b);
+    if (!(signed_phase(t) < 0)) return;
+    best_ = std::min({best_, bisect(p, tooth, lo, t, g_mid), bisect(p, tooth, t, hi, -g_mid)});
   }
 
   // The crossing's height, its time halved 60 times.
