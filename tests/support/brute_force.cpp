@@ -217,10 +217,11 @@ class NodeSearch {
   }
 
   // |g| at its smallest at the middle of three samples of one sign, near zero: the edge may
-  // have touched the node's azimuth and turned back between them.
+  // have touched the node's azimuth and turned back between them. (Off the ball phase() gives
+  // exactly 0, which is no dip.)
   static bool dips(double ga, double gb, double gc) {
-    return (ga < 0) == (gb < 0) && (gb < 0) == (gc < 0) && std::abs(gb) <= std::abs(ga) &&
-           std::abs(gb) <= std::abs(gc) && std::abs(gb) < kGraze;
+    return gb != 0 && (ga < 0) == (gb < 0) && (gb < 0) == (gc < 0) &&
+           std::abs(gb) <= std::abs(ga) && std::abs(gb) <= std::abs(gc) && std::abs(gb) < kGraze;
   }
   static constexpr double kGraze = 0.1;  // rad
 
