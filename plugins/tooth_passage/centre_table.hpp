@@ -287,6 +287,32 @@ class CentreTable {
     return out;
   }
 
+  // How the tabulated nominal height can fall below its tangent at any time, over the whole
+  // table: the most its slope falls per second within a cubic (-z'', linear on each, so largest at
+  // an end; 0 where every cubic bends up) and the most it jumps at a knot (the cubics meet with a
+  // slope off by their interpolation error). Then z(t + h) >= z(t) + (z'(t) - jump) h -
+  // (bend + jump / dt) h^2 / 2 either way, where dt the knots' step (at most h / dt + 1 knots lie
+  // within h).
+  struct Bend {
+    double bend, jump;
+  };
+  Bend z_bend() const {
+    Bend out{0.0, 0.0};
+    for (std::size_t i = 1; i + 2 < knots_.size(); ++i) {
+      const Cubic& c = cubic_[i];
+      const double z2 = 2 * c[2].z(), end = z2 + 6 * c[3].z();
+      out.bend = std::max(out.bend, -std::min(z2, end) * inv_dt_ * inv_dt_);
+      if (i + 3 < knots_.size()) {  // the slope at the cubic's end against the next one's start
+        const double left = c[1].z() + z2 + 3 * c[3].z(), right = cubic_[i + 1][1].z();
+        out.jump = std::max(out.jump, std::abs(left - right) * inv_dt_);
+      }
+    }
+    // (A margin for the round-off in the coefficients.)
+    out.bend = 1.01 * out.bend, out.jump = 1.01 * out.jump + 1e-15;
+    out.bend += out.jump * inv_dt_;
+    return out;
+  }
+
   // Upper bounds of the nominal centre's horizontal and vertical speed (mm/s): the knots' chords,
   // with a margin for the bend between them.
   std::pair<double, double> top_speed() const {

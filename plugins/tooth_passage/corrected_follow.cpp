@@ -73,7 +73,8 @@ void CorrectedFollow::place_stops(double t_b, double target) {
     const double dir = side ? 1.0 : -1.0;
     double& stop = stop_[side];
     if (std::isnan(stop) || dir * (stop - t_b) < beyond) stop = t_b + dir * beyond;
-    while (geo_.bound(stop) < target && dir * (stop - t_b) < span + rev && !s_.stopped())
+    while (!geo_.beyond_reach(stop, dir, target) && dir * (stop - t_b) < span + rev &&
+           !s_.stopped())
       stop += dir * 0.5 * rev;
     while (geo_.ends_by_bound(t_b, dir, stop - dir * 0.5 * rev, target)) stop -= dir * 0.5 * rev;
   }
@@ -107,7 +108,8 @@ bool CorrectedFollow::walk_side(int tooth, int side) {
 
 double CorrectedFollow::revisit(double best, bool& solved) {
   if (std::isnan(stop_[0]) || !std::isfinite(best)) return NAN;
-  if (geo_.floor_envelope(stop_[0]) < best || geo_.floor_envelope(stop_[1]) < best) return NAN;
+  if (!geo_.beyond_reach(stop_[0], -1.0, best) || !geo_.beyond_reach(stop_[1], 1.0, best))
+    return NAN;
   const double x = geo_.x(), rev = s_.rev, t_lo = geo_.t_lo(), t_hi = geo_.t_hi();
   double low = INFINITY;
   bool any = false;

@@ -18,11 +18,11 @@ double node_height_reference(const PassageSetup& s, double x, double y, NodeCoun
     const PassageGeometry geo(s, p, x, y, radii.first, radii.second);
     // The walk starts from the bound's bottom: a corrected envelope wiggles with the tooth
     // period and a golden section on it can stop in any dip, while its floor (the nominal centre
-    // moved by the correction's whole range) has a single minimum, near the ball's lowest
-    // passage over the node.
+    // moved by the correction's whole range) has a single minimum near the ball's lowest passage
+    // over the node, or where it may have two (FloorTail) a bound of the rest (lowest_bound).
     const double t_b = geo.bottom_near([&](double t) { return geo.bound(t); }, t0);
     const double slack = s.wiggles ? kFloorSlack : 0.0;
-    if (geo.bound(t_b) - slack >= best) continue;  // this pass cannot lower the node
+    if (geo.lowest_bound(t_b, best + slack) - slack >= best) continue;  // it cannot lower the node
     best = std::min(best, geo.walk(t_b, roots, counts.passages, best));
     if (s.on_tip_line(p, x, y))
       best = std::min(best, geo.tip_height(s.window[p].tilted ? s.tip_time(p, x, y) : t0));

@@ -139,7 +139,8 @@ class PassageGeometry {
 
   // A lower bound of envelope(t) whatever the correction and the runout within their ranges: the
   // spindle axis's nominal centre moved by the range's lowest z and as close to the node as the
-  // range allows. It has a single minimum, as the ideal envelope.
+  // range allows. It has a single minimum, as the ideal envelope, but where the nominal height
+  // bends down (PassageSetup::FloorTail).
   double floor_envelope(double t) const {
     const Vec3 c = s_.runout > 0 ? s_.window[win_].spindle_axis->nominal(t) : table_.nominal(t);
     const Vec3 &lo = s_.window[win_].shift_lo, &hi = s_.window[win_].shift_hi;
@@ -157,14 +158,7 @@ class PassageGeometry {
   }
   // The ball point over the node's distance from the tool's axis at t (Probe::rho): the same as
   // distance() for a vertical tool; +inf off the ball.
-  double axis_distance(double t) const {
-    if (!tilted_) return distance(t);
-    const Vec3 c = table_(t);
-    const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
-    if (!(r2 < s_.R2)) return INFINITY;
-    const Vec3 p = to_tool(t) * Vec3(dx, dy, -std::sqrt(s_.R2 - r2));
-    return std::sqrt(p.x() * p.x() + p.y() * p.y());
-  }
+  double axis_distance(double t) const;
 
   // The ball's height over the node, continued past its rim so that it stays unimodal (a ringed
   // cutter's hull: CutterProfile).
@@ -292,17 +286,9 @@ class PassageGeometry {
     return {t - reach, t + reach, norm(x_ - c.x(), y_ - c.y()), reach};
   }
   // What the bounds prove of the phase over a stretch: every follow's one question before it
-  // steps, ends a walk or trusts a turn. Answered first by a reason that holds all along the
-  // window, from the node's distance (no span): far from the line G' stays within (0, 2 omega): a
-  // vertical tool, the node farther from the window's line than S v / omega (PlanLine; S from the
-  // lag's slope over the ball to 0.95 R: gap_lag, or out to as far as the node gets: clearance),
-  // and within 0.95 R of the axis all along (it moves away at most at the centre's top speed v);
-  // most nodes of every scene, all but those within about v / omega of a pass's line. Closer to the
-  // line, on a pass that keeps to it (PlanLine::along_lo), the side the node lies on settles it
-  // (line_rates): where the node's azimuth turns with the spindle the phase is monotone from a few
-  // micrometres out (the paper's loxodrome at its feed: 3.3 um), and there G' may exceed 2 omega.
-  // Else by the span over the stretch.
-  // (The distance's answer inline: most steps end there.)
+  // steps, ends a walk or trusts a turn. Answered first, inline, by a reason that holds all along
+  // the window, from the node's distance (monotone_by_distance: most steps end there), else by
+  // the span over the stretch.
   Monotony monotony(const Stretch& s) const {
     if (!std::isnan(s.rho) && monotone_by_distance(s.rho, s.reach))
       return {true, INFINITY, any_turn_exact()};
@@ -313,15 +299,9 @@ class PassageGeometry {
   // The phase's rate on a window whose centre keeps to its line (PlanLine::along_lo > 0), at every
   // time the node is within `out` of the axis, from the side of the line the node lies on:
   // within [w - fall, w + rise] in the spindle's sense, returned as (fall, rise); infinite where
-  // not known (another window, the node in the line's strip, `out` past the rim). The moment of
-  // the centre's velocity about the node, q x v = along(q) across(v) - across(q) along(v), keeps
-  // the sign of -across(q) and is at least d along_lo - out across_hi in size (d the node's least
-  // distance from the line); bound_rates' last bound, G' - omega = (|v|^2 / (q x v)) f with f
-  // within [(1 - S) / 2, (1 + S) / 2] (S from the lag's slope out to `out`), then gives G' -
-  // omega within (speed_hi^2 / that) [(1 - S) / 2, (1 + S) / 2] in the spindle's sense where the
-  // node's azimuth turns with the spindle, and within the same times [-(1 + S) / 2, (S - 1) / 2]
-  // where it turns against it. A span near the axis bounds the rate by v / rho_lo at best; this
-  // holds all along the pass for the price of one lookup.
+  // not known (another window, the node in the line's strip, `out` past the rim). One lookup for
+  // the whole pass, where a span near the axis bounds the rate by v / rho_lo at best (the proof
+  // is at its definition, passage_geometry_bounds.cpp).
   std::pair<double, double> line_rates(double out) const;
   // How soon after a crossing `rho` from the axis the same tooth can cross again by line_rates
   // (a whole turn at the top rate, the phase monotone), up to `cap`; 0 where that is not known.
@@ -399,22 +379,31 @@ class PassageGeometry {
   // The one crossing in [lo, hi], where g is monotone and changes sign (regula falsi, Illinois).
   double solve_bracket(int tooth, double lo, double hi, double g_lo, double g_hi) const;
 
-  // A true lower bound of every crossing's height at time t with a single minimum: the envelope
-  // itself when ideal, its floor when it wiggles.
+  // A true lower bound of every crossing's height at time t: the envelope itself when ideal, its
+  // floor when it wiggles. It has a single minimum but where the floor's tail is on (FloorTail).
   double bound(double t) const { return s_.wiggles ? floor_envelope(t) : envelope(t); }
-  // The stop-by-bound rule every walk ends by: past the bound's bottom t_b the bound only rises,
-  // so where it is at or above `best` at t, at least kBottomTolerance of a tooth period from t_b
-  // in direction dir (t_b is that close to the bottom), no crossing from t on can lower the node.
-  bool ends_by_bound(double t_b, double dir, double t, double best) const {
-    return dir * (t - t_b) >= kBottomTolerance * s_.period && bound(t) >= best;
+  // Whether no crossing from t on in direction dir can lower the node to `best`, t past the
+  // bound's bottom: the bound at t is at or above it, and with the tail on, so is tail_floor.
+  bool beyond_reach(double t, double dir, double best) const {
+    return bound(t) >= best && (!s_.window[win_].tail.on || tail_floor(t, dir, best) >= best);
   }
+  // The stop-by-bound rule every walk ends by: beyond_reach at t, at least kBottomTolerance of a
+  // tooth period from the bound's bottom t_b in direction dir (t_b is found that close to it).
+  bool ends_by_bound(double t_b, double dir, double t, double best) const {
+    return dir * (t - t_b) >= kBottomTolerance * s_.period && beyond_reach(t, dir, best);
+  }
+  // A lower bound of the bound over the whole window, t_b its bottom: the bound there, and with
+  // the tail on the least of that and both tails from there (passage_geometry_tail.cpp).
+  double lowest_bound(double t_b, double target) const;
+  // A lower bound of the floor over the window from t on in direction dir, proven where it is at
+  // least `target` (else -inf): the floor's nominal height falls below its tangent at t by at
+  // most its bend, while the ball's depth there falls as the node's least distance from the box
+  // grows, at least at the nominal's least speed along its line (FloorTail).
+  double tail_floor(double t, double dir, double target) const;
 
   // A node on the pass's line, which the axis passes within kOnAxis of at t0 (the level time), is
   // cut by the tip then; +inf otherwise.
-  double tip_height(double t0) const {  // t0: PassageSetup::tip_time
-    const Probe q = probe(0, t0);
-    return q.over && q.rho < kOnAxis ? q.height : INFINITY;
-  }
+  double tip_height(double t0) const;  // t0: PassageSetup::tip_time
 
   // The reference walk: revolutions outwards from t_b (the bound's bottom), every tooth's
   // crossings in each found exactly (crossings_in, one subdivision for all teeth), until the
@@ -454,7 +443,14 @@ class PassageGeometry {
            line_gap_ >= kRoom * s_.gap_lag * s_.window[win_].plan_line.speed / std::abs(s_.omega);
   }
   // Whether the phase is monotone over `reach` from (or to) a time when the node is `rho` from
-  // the axis, by the reasons that hold all along the window (monotony).
+  // the axis, by the reasons that hold all along the window (monotony). Far from the line G'
+  // stays within (0, 2 omega): a vertical tool, the node farther from the window's line than
+  // S v / omega (PlanLine; S from the lag's slope over the ball to 0.95 R: gap_lag, or out to as
+  // far as the node gets: clears_line), and within 0.95 R of the axis all along (it moves away at
+  // most at the centre's top speed v); all nodes but those within about v / omega of a pass's
+  // line. Closer to it, on a pass that keeps to it (PlanLine::along_lo), the side the node lies
+  // on settles it (line_rates): where the node's azimuth turns with the spindle the phase is
+  // monotone from a few micrometres out (the paper's loxodrome at its feed: 3.3 um).
   bool monotone_by_distance(double rho, double reach) const {
     const double v = s_.window[win_].plan_line.speed, out = rho + v * reach;
     if (out > rim()) return false;

@@ -243,6 +243,13 @@ bool PassageGeometry::clears_line(double out) const {
   return !tilted_ && !turning_ && line_gap_ >= clearance(out, s_.window[win_].plan_line.speed);
 }
 
+// The moment of the centre's velocity about the node, q x v = along(q) across(v) - across(q)
+// along(v), keeps the sign of -across(q) and is at least d along_lo - out across_hi in size (d the
+// node's least distance from the line); bound_rates' last bound, G' - omega = (|v|^2 / (q x v)) f
+// with f within [(1 - S) / 2, (1 + S) / 2] (S from the lag's slope out to `out`), then gives
+// G' - omega within (speed_hi^2 / that) [(1 - S) / 2, (1 + S) / 2] in the spindle's sense where
+// the node's azimuth turns with the spindle, and within the same times [-(1 + S) / 2, (S - 1) / 2]
+// where it turns against it.
 std::pair<double, double> PassageGeometry::line_rates(double out) const {
   const PassageSetup::PlanLine& l = s_.window[win_].plan_line;
   const double moment = l.along_lo * line_gap_ - l.across_hi * out;

@@ -36,4 +36,18 @@ double PassageGeometry::walk(double t_b, std::vector<Crossing>& roots, std::uint
   return best;
 }
 
+double PassageGeometry::axis_distance(double t) const {
+  if (!tilted_) return distance(t);
+  const Vec3 c = table_(t);
+  const double dx = x_ - c.x(), dy = y_ - c.y(), r2 = dx * dx + dy * dy;
+  if (!(r2 < s_.R2)) return INFINITY;
+  const Vec3 p = to_tool(t) * Vec3(dx, dy, -std::sqrt(s_.R2 - r2));
+  return std::sqrt(p.x() * p.x() + p.y() * p.y());
+}
+
+double PassageGeometry::tip_height(double t0) const {
+  const Probe q = probe(0, t0);
+  return q.over && q.rho < kOnAxis ? q.height : INFINITY;
+}
+
 }  // namespace topomill::plugins

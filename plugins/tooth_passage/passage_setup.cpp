@@ -9,6 +9,9 @@ namespace topomill::plugins {
 namespace {
 // Interpolated centres agree with the path to a nanometre's tenth: far below any grid.
 constexpr double kTableTolerance = 1e-7;  // mm
+// A nominal height that bends down by no more than this over a window (round-off on a plane)
+// leaves the floor a single minimum for every purpose the walks have.
+constexpr double kBendNegligible = 1e-10;  // mm
 // Windows tabulated between two looks at the stop flag, less one (a mask).
 constexpr std::size_t kWindowsPerStopCheck = 1023;
 
@@ -128,6 +131,32 @@ void PassageSetup::add_window(const Extent& where,
   win.lowest_nominal = win.centre.nominal_lowest_z();
   win.nominal_speed = win.centre.top_speed();
   bound_window(win, whole.lo, whole.hi);
+  bound_floor_tail(win);
+}
+
+void PassageSetup::bound_floor_tail(Window& win) const {
+  if (!wiggles) return;
+  const CentreTable& table = win.spindle_axis ? *win.spindle_axis : win.centre;
+  const CentreTable::Bend b = table.z_bend();
+  const double span = win.t_hi - win.t_lo;
+  if (b.bend * span * span / 2 + b.jump * span <= kBendNegligible) return;
+  FloorTail& f = win.tail;
+  f.on = true, f.bend = b.bend, f.jump = b.jump;
+  const Vec3 a = table.nominal(win.t_lo), e = table.nominal(win.t_hi);
+  const double len = std::hypot(e.x() - a.x(), e.y() - a.y());
+  f.x = a.x(), f.y = a.y();
+  f.ux = len > 0 ? (e.x() - a.x()) / len : 1.0, f.uy = len > 0 ? (e.y() - a.y()) / len : 0.0;
+  const CentreTable::LineSpeeds s = table.line_speeds(f.ux, f.uy);
+  if (std::isfinite(s.along_lo) && std::isfinite(s.along_hi))
+    f.along_lo = s.along_lo, f.along_hi = s.along_hi;
+  f.off = table.plan_deviation(a, f.ux, f.uy) + 1e-12;
+  // The box's farthest reach along (ax, ay).
+  const Vec3 &lo = win.shift_lo, &hi = win.shift_hi;
+  auto support = [&](double ax, double ay) {
+    return std::max(ax * lo.x(), ax * hi.x()) + std::max(ay * lo.y(), ay * hi.y());
+  };
+  f.ahead = support(f.ux, f.uy), f.behind = support(-f.ux, -f.uy);
+  f.side = std::max(support(-f.uy, f.ux), support(f.uy, -f.ux));
 }
 
 void PassageSetup::bound_window(Window& win, const Vec3& lo, const Vec3& hi) {

@@ -86,6 +86,20 @@ struct PassageSetup {
     bool blend = false;
     BlendFrame frame;
   };
+  // What bounds the floor (PassageGeometry::floor_envelope) over a tail of a window, where its
+  // nominal height bends down (a convex arc): then the floor can have two minima (the ball's
+  // depth is flat over the correction's box, so the floor follows that height there) and a walk
+  // cannot stop where it first rises above the best (PassageGeometry::tail_floor). `on` false:
+  // the height never bends down by more than round-off, and the floor has a single minimum.
+  // Of the floor's nominal (the spindle axis's with a runout): the line in plan (through (x, y),
+  // the unit (ux, uy) from the window's start to its end), the least and greatest speed along it
+  // (none known: NaN), how far it strays across it, and its height's Bend (CentreTable::z_bend);
+  // and how far the correction's box reaches ahead along the line, behind, and to either side.
+  struct FloorTail {
+    bool on = false;
+    double x = 0, y = 0, ux = 0, uy = 0, along_lo = NAN, along_hi = NAN, off = 0, bend = 0,
+           jump = 0, ahead = 0, behind = 0, side = 0;
+  };
   // Where a window lies in its pass: [t_lo, t_hi] of pass `pass`, from waypoint segment `segment`
   // (0 on a line pass).
   struct Extent {
@@ -125,6 +139,7 @@ struct PassageSetup {
     // stays within (0, 2 omega) while the centre, at its top speed v, stays farther than
     // sqrt(1 + Psi_u^2) v / omega and within kRimFraction R (the lag's slope bounded).
     std::pair<double, double> gap_rho{0.0, 0.0};
+    FloorTail tail;
   };
 
   const ToolPath* path;
@@ -198,6 +213,8 @@ struct PassageSetup {
   void add_window(const Extent& where, const std::shared_ptr<const CorrectionIndex>& index);
   // Its plan line and segment, and its gap radii, given the correction's range [lo, hi].
   void bound_window(Window& win, const Vec3& lo, const Vec3& hi);
+  // Its FloorTail, on a wiggling path.
+  void bound_floor_tail(Window& win) const;
 };
 
 }  // namespace topomill::plugins

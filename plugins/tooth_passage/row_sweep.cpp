@@ -149,8 +149,8 @@ RowSweep::PassResult RowSweep::pass_height(std::size_t p, double x, double y, do
     // axis): the reference walk, which needs only the hull's bound.
     t_b = geo.bottom_near([&](double t) { return geo.bound(t); }, t0());
     if (std::isnan(t_b)) return out;
-    if (geo.bound(t_b) - (s_.wiggles ? kFloorSlack : 0.0) >= best)
-      return out.can_lower = false, out;
+    const double slack = s_.wiggles ? kFloorSlack : 0.0;
+    if (geo.lowest_bound(t_b, best + slack) - slack >= best) return out.can_lower = false, out;
     out.height = std::min(walk_reference(geo, st, t_b, best, counts, out), tip_cut());
     return out;
   }
@@ -168,11 +168,12 @@ RowSweep::PassResult RowSweep::pass_height(std::size_t p, double x, double y, do
     return out;
   }
   // A corrected envelope wiggles: its floor (the nominal centre moved by the correction's whole
-  // range) is a true bound with a single minimum; it rules out the passes that cannot come close
-  // and ends the walk. A pass whose floor was too high at an earlier node stays too high for a
-  // while: where the floor is below its height H there, the ball's lower cap is no steeper than
-  // R / (zc - H) (zc the centre's height), past the rim no steeper than 1, and the floor must
-  // climb from `best` to H between the two nodes.
+  // range) is a true bound with a single minimum, or with its tail's bound where it may have two
+  // (FloorTail); it rules out the passes that cannot come close and ends the walk. A pass whose
+  // floor was too high at an earlier node stays too high for a while: where the floor is below its
+  // height H there, the ball's lower cap is no steeper than R / (zc - H) (zc the centre's height),
+  // past the rim no steeper than 1, and the floor must climb from `best` to H between the two
+  // nodes.
   if (!std::isnan(st.floor_x) &&
       st.floor - floor_steepness(s_, p, st.floor) * std::abs(x - st.floor_x) >= best)
     return out.can_lower = false, out;
@@ -185,7 +186,7 @@ RowSweep::PassResult RowSweep::pass_height(std::size_t p, double x, double y, do
   }
   t_b = bottom([&](double t) { return geo.floor_envelope(t); }, geo, st, x, t0);
   if (std::isnan(t_b)) return out;
-  if (const double low = geo.floor_envelope(t_b) - kFloorSlack; low >= best)
+  if (const double low = geo.lowest_bound(t_b, best + kFloorSlack) - kFloorSlack; low >= best)
     return st.floor = low, st.floor_x = x, out.can_lower = false, out;
   bool irregular = false;
   double h = INFINITY;

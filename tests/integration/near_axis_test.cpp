@@ -245,15 +245,15 @@ TEST_CASE("tooth_passage equals a brute force over the near-axis matrix", "[.nea
   if (table) std::ofstream(table) << rows.str();
 }
 
-// A known defect, hidden until it is fixed (run it with `topomill_tests "[.known-defect]"`): at
-// the tip of the arc, with a 50 um runout, three teeth, vibration and deflection, both walks lose
-// the lowest crossing at three of 36 nodes (13.8, 1.3 and 0.66 nm high at (-0.005, -0.00497),
-// (0.005, 0.00497) and (-0.025, 0.02485)); the scan walk finds it, as the brute force does. With
-// 20 um of runout, or two teeth, or without the effects, the walks agree to 0.002 nm. The cause
-// (docs/reliability.md): the floor the walks stop by has two minima on a convex arc when the
-// correction's box spans the arc's top, and a walk stops at the bump between them.
+// At the tip of the arc, with a 50 um runout, three teeth, vibration and deflection, the floor the
+// walks stop by has two minima: the correction's box spans the arc's top, the ball's depth is flat
+// over it, and the floor follows the concave nominal height there (docs/reliability.md). A walk
+// that stopped where the floor first rose above the best lost the lowest crossing at three of 36
+// nodes (13.8, 1.3 and 0.66 nm at (-0.005, -0.00497), (0.005, 0.00497) and (-0.025, 0.02485));
+// the floor's tail bound (passage_geometry_tail.cpp) stops them only where nothing beyond can
+// lower the node.
 TEST_CASE("tooth_passage equals a brute force at the tip under a 50 um runout with vibration",
-          "[.known-defect]") {
+          "[near-axis]") {
   const std::string scene = testing::paper_scene(kConvex, 0.0, 0.05, 0.05, 0.01) + kDynamics;
   const Compared r = compare_walks(scene, {"runout.offset=0.05", "tool.teeth=3"});
   INFO("row walk " << r.worst[0] * 1e6 << " nm at " << r.worst_at[0] << "; node walk "

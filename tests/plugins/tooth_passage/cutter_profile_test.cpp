@@ -2,8 +2,9 @@
 // at the section's distance is the section's height, wherever an edge is, and the lag goes on
 // continuously past the reach; the hull is never shallower than the surface and never deepens
 // outwards; the lag's slope in ln(rho) is the lag's central difference; the steepness is the
-// depth's central difference; and the profile says it describes a tool exactly when the section
-// is the tube's circle, sheared by an axial rake or not. An insert with an axial rake folds back on
+// depth's central difference, and the section no steeper below a depth than steepest_below says;
+// and the profile says it describes a tool exactly when the section is the tube's circle, sheared
+// by an axial rake or not. An insert with an axial rake folds back on
 // itself: past a fold the section is above the surface over the same distance, not on it.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -115,6 +116,39 @@ TEST_CASE("the profile's lag slope and steepness are the central differences", "
   }
   // A held lag has no slope: the bottom, the loxodrome's tip.
   if (f.tip() > 0) CHECK(f.slope(*tool, 0.5 * f.tip(), f.at(0.5 * f.tip())) == 0);
+}
+
+// The row walk rules a pass out along a row by how steep the section can be below a depth
+// (floor_steepness): a bound too small would keep out a pass that can lower a node.
+TEST_CASE("the steepest below a depth bounds the section's slope there", "[tooth_passage]") {
+  const Tool t = GENERATE(from_range(tools()));
+  const auto tool = testing::make_model<ToolGeometry>(t.plugin, t.values);
+  const CutterProfile f(*tool);
+  INFO(t.plugin);
+  // The section's points on the surface (moving out with alpha, short of a fold): their depth
+  // below the tube's centre plane and their slope |dZ/dX|, by differences of the section.
+  struct Point {
+    double depth, slope;
+  };
+  std::vector<Point> points;
+  const double a0 = tool->first_polar_angle(), da = 1e-7;
+  constexpr int kSamples = 20000;
+  for (int k = 1; k < kSamples; ++k) {
+    const double a = a0 + (M_PI / 2 - a0) * k / kSamples;
+    const topomill::Vec2 lo = tool->section(a - da), hi = tool->section(a + da);
+    if (!(hi.x() - lo.x() > 1e-4 * da)) continue;  // at or past a fold: not the surface
+    points.push_back({-tool->section(a).y(), std::abs((hi.y() - lo.y()) / (hi.x() - lo.x()))});
+  }
+  REQUIRE(points.size() > kSamples / 2);
+  const double r = f.tube();
+  for (const double part : {0.05, 0.2, 0.5, 0.8, 0.95, 1.0}) {
+    const double depth = part * r;
+    double steepest = 0;
+    for (const Point& p : points)
+      if (p.depth >= depth) steepest = std::max(steepest, p.slope);
+    INFO("depth " << depth << " mm: the section's steepest below it " << steepest);
+    CHECK(f.steepest_below(depth) >= steepest * (1 - 1e-6));
+  }
 }
 
 TEST_CASE("the profile describes a tool whose section is its tube's circle", "[tooth_passage]") {
