@@ -5,9 +5,8 @@
 // where an edge can be over the node (the floor below its centre's height) gives the tail's least
 // m; no proof may claim more (a target 1e-7 mm above m must not be proven), and with a target
 // 1 um below m most of the ball's tails that start within 50 um of m (where the walks ask: from a
-// bottom, or a stop past it) must be proven (the bound is of use). On a plane the
-// nominal height does not bend down, and the tail stays off: the walks keep the single-minimum rule
-// there.
+// bottom, or a stop past it) must be proven (the bound is of use). On a plane the nominal height
+// does not bend down, and the tail stays off: the walks keep the single-minimum rule there.
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
