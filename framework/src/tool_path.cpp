@@ -2,6 +2,8 @@
 
 #include "topomill/path_model.hpp"
 
+#include "ring_rest.hpp"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -142,14 +144,32 @@ Vec3 ToolPath::nominal_centre(std::size_t p, double t) const {
   const double lambda = surface_->inclination(y);
   const double x = passes_[p].x + feed_speed_ * (passes_[p].dx * t);
   const double sl = std::sin(lambda), cl = std::cos(lambda);
-  double off = offset_;
-  if (ring_ > 0) {
-    const Vec3 n(0.0, sl, cl);
-    off += ring_ * (passes_[p].posture.vertical() ? std::abs(sl) : n.cross(axis(p, t)).norm());
-  }
+  const double off = ring_ > 0 ? ring_distance(p, t, y, sl, cl) : offset_;
   Vec3 k{x, y + off * sl, surface_->height(y) + off * cl};
   if (runout_.offset > 0) k += runout_offset(p, t);  // (none: not even a zero, so the bits stay)
   return k;
+}
+
+void ToolPath::set_ring(double c) {
+  ring_ = c;
+  // Along X the foot point and the axis stay put over a pass: its centre's distance is found once.
+  ring_rest_.assign(passes_.size(), NAN);
+  if (!(c > 0) || !std::isfinite(surface_->curvature_radius())) return;
+  for (std::size_t p = 0; p < passes_.size(); ++p)
+    if (passes_[p].waypoints.empty() && passes_[p].dy == 0)
+      ring_rest_[p] = detail::ring_rest(*surface_, passes_[p].y_start, axis(p, 0.0), c, offset_);
+}
+
+double ToolPath::ring_distance(std::size_t p, double t, double y, double sl, double cl) const {
+  // On a plane the tangent plane is the surface: its closed form (ring_rest.hpp).
+  if (!std::isfinite(surface_->curvature_radius())) {
+    double off = offset_;
+    const Vec3 n(0.0, sl, cl);
+    off += ring_ * (passes_[p].posture.vertical() ? std::abs(sl) : n.cross(axis(p, t)).norm());
+    return off;
+  }
+  if (!std::isnan(ring_rest_[p])) return ring_rest_[p];
+  return detail::ring_rest(*surface_, y, axis(p, t), ring_, offset_);
 }
 
 Vec3 ToolPath::runout_offset(std::size_t p, double t) const {

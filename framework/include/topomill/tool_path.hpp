@@ -75,11 +75,12 @@ class TOPOMILL_API ToolPath {
   double feed_speed() const { return feed_speed_; }
   double spindle_rate() const { return spindle_rate_; }
   double offset() const { return offset_; }
-  // A cutter whose tube is centred on a ring c about its axis (tool_geometry.hpp) touches a plane
-  // whose normal is beta from its axis c sin(beta) farther out than a ball of the tube's radius:
-  // its centre is put that much farther along the normal through the foot point (exact on a
-  // plane; on a curved surface the tangent plane at the foot stands for it). None by default.
-  void set_ring(double c) { ring_ = c; }
+  // A cutter whose tube is centred on a ring c about its axis (tool_geometry.hpp): its centre
+  // is put on the normal through the foot point where the ring's nearest point lies r - ap from
+  // the surface (its deepest point ap below it). On a plane whose normal is beta from the axis
+  // that is c sin(beta) farther out than a ball of the tube's radius; over a curve the ring's
+  // nearest point is found (ring_rest.hpp). None by default.
+  void set_ring(double c);
   double ring() const { return ring_; }
   const SurfaceShape& surface() const { return *surface_; }
 
@@ -165,6 +166,11 @@ class TOPOMILL_API ToolPath {
   std::shared_ptr<const SurfaceShape> surface_;
   double offset_, feed_speed_, spindle_rate_;
   double ring_ = 0.0;
+  // Per pass along X over a curve, its centre's distance from the surface (the foot point and
+  // the axis stay put along it); NaN where it is found at each time.
+  std::vector<double> ring_rest_;
+  // The centre's distance from the surface along the normal at foot y (sin and cos of lambda).
+  double ring_distance(std::size_t p, double t, double y, double sl, double cl) const;
   std::vector<Pass> passes_;
   FeedAxis axis_;
   std::vector<Correction> corrections_;

@@ -106,9 +106,9 @@ TEST_CASE("the floor's tail bound holds under the sampled floor on a convex arc"
     std::vector<std::string> overrides;
     bool of_use;  // whether most tails must be proven 1 um below the sampled least
   };
-  // The bull-nose's centre is laid by the tangent plane at its foot (ToolPath::set_ring), whose
-  // ring term c |sin(lambda)| has a corner at the arc's top: its height's bend is unbounded there,
-  // and the bound is sound but of no use (the walks then go on to the window's end).
+  // The bull-nose's tails are seldom proven (a quarter of those near the least): its depth stays
+  // level while the node is under the flat bottom, so a proof must reach on until the node leaves
+  // the ring, over which the nominal height's bend (the window's greatest) outgrows the rise.
   const Case c = GENERATE_COPY(Case{"ball end, 3 teeth", ball, {"tool.teeth=3"}, true},
                                Case{"ball end at lambda 30", ball, {"region.lambda=30"}, true},
                                Case{"bull-nose D 10 r 2",
