@@ -130,6 +130,7 @@ TEST_CASE("sweep: an interrupted sweep stops promptly and a rerun finishes it", 
                                          "--set",  "region.spacing=0.02",
                                          "--out",  out};
   const int pid = testing::spawn_topomill(args, log);
+  testing::wait_until_catching(pid, SIGINT);
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   kill(pid, SIGINT);
   const int status = testing::wait_for(pid);

@@ -122,6 +122,7 @@ TEST_CASE("SIGINT, SIGTERM and SIGHUP stop a run promptly with a message and wri
       const int pid = testing::spawn_topomill(
           {"run", c.scene, "-q", "--set", "evaluator.plugin=zmap", "--out", out}, log);
       REQUIRE(pid > 0);
+      testing::wait_until_catching(pid, c.signal);
       std::this_thread::sleep_for(std::chrono::milliseconds(1500));
       const auto sent = Clock::now();
       kill(pid, c.signal);

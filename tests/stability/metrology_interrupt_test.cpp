@@ -36,14 +36,15 @@ std::string big_map() {
   return file;
 }
 
-// Starts `args`, signals it `after` seconds later; it must end with 128 + the signal within 2 s
-// (or have finished first, exit 0), leaving `out` absent unless it finished.
+// Starts `args`, signals it `after` seconds after it catches the signal; it must end with 128 + the
+// signal within 2 s (or have finished first, exit 0), leaving `out` absent unless it finished.
 void stopped(const std::vector<std::string>& args, const std::string& out, double after,
              int signal) {
   const std::string log = out + ".log";
   fs::remove_all(out);
   const int pid = testing::spawn_topomill(args, log);
   REQUIRE(pid > 0);
+  testing::wait_until_catching(pid, signal);
   std::this_thread::sleep_for(std::chrono::duration<double>(after));
   const auto sent = Clock::now();
   kill(pid, signal);

@@ -3,12 +3,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
 #include <system_error>
+#include <thread>
 
 #include "spawn.hpp"
 
@@ -83,6 +86,23 @@ int spawn_topomill(const std::vector<std::string>& args, const std::string& log)
   }
   fs::current_path(here);
   return pid;
+}
+
+void wait_until_catching(int pid, int signal) {
+  const auto start = std::chrono::steady_clock::now();
+  while (std::chrono::steady_clock::now() - start < std::chrono::seconds(30)) {
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    std::string line;
+    bool alive = false;
+    while (std::getline(status, line)) {
+      if (line.rfind("State:", 0) == 0) alive = line.find('Z') == std::string::npos;
+      if (line.rfind("SigCgt:", 0) == 0 && alive &&
+          (std::stoull(line.substr(7), nullptr, 16) >> (signal - 1) & 1))
+        return;
+    }
+    if (!alive) return;  // ended (a zombie until waited for) or gone
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
 }
 
 int wait_for(int pid) {

@@ -21,6 +21,10 @@ CommandResult run_topomill(const std::string& args, const std::string& env = "")
 int spawn_topomill(const std::vector<std::string>& args, const std::string& log);
 // Waits for a spawned program; returns its raw wait status.
 int wait_for(int pid);
+// Waits (up to 30 s) until a spawned program catches `signal` (Linux: its SigCgt mask in
+// /proc), or has ended. A signal sent before that meets the default action: the program has not
+// reached main() yet, and a test timed from the spawn would fail by the machine's load alone.
+void wait_until_catching(int pid, int signal);
 
 std::string source_dir();
 std::string fixture_dir(const std::string& name);
