@@ -336,6 +336,7 @@ class CentreTable {
     inv_dt_ = 1 / dt;
     const auto n = static_cast<std::size_t>(std::ceil((t_hi - t0_) / dt)) + 3;
     knots_.resize(n);
+    pieces_end_ = static_cast<double>(n) - 2;
     for (std::size_t i = 0; i < n; ++i) knots_[i] = path_centre(t0_ + static_cast<double>(i) * dt);
     // On [i, i + 1] the cubic through knots i-1 .. i+2 (Lagrange), in powers of s = u - i: three
     // multiply-adds a probe instead of four weights and four scaled knots.
@@ -405,13 +406,16 @@ class CentreTable {
   }
   std::vector<Cubic> cubic_;
   // The cubic that holds t and t's place s in [0, 1) along it; null beyond the table's cubics.
+  // (u >= 1: the truncation is the floor, and floor(u) + 2 < n is u < n - 2; the baseline x86-64
+  // has no rounding instruction, and std::floor was a fifth of a probe's centre.)
   const Cubic* piece(double t, double& s) const {
     const double u = (t - t0_) * inv_dt_;
-    const double k = std::floor(u);
-    if (!(k >= 1 && k + 2 < static_cast<double>(knots_.size()))) return nullptr;
-    s = u - k;
-    return &cubic_[static_cast<std::size_t>(k)];
+    if (!(u >= 1 && u < pieces_end_)) return nullptr;
+    const auto k = static_cast<std::size_t>(u);
+    s = u - static_cast<double>(k);
+    return &cubic_[k];
   }
+  double pieces_end_ = 0;  // the number of knots less 2: the first index past the cubics
   std::shared_ptr<const CorrectionIndex> index_;
 };
 
