@@ -300,14 +300,14 @@ std::vector<Case> hard_cases() {
       // Passes that overlap: each node under up to four, whose flat bottoms leave feed marks
       // deeper than the passes' lowest points differ by, so that a pass is ruled out only by its
       // own lowest (RowSweep's pass skip); ideal and with the effects' wiggles.
-      Case{"flat end, passes 1 mm apart on a plate inclined along the feed",
+      Case{"flat end, passes 0.7 mm apart on a plate inclined 3 deg along the feed",
            "flat_end",
            {{"diameter", 4}, {"corner_radius", 0.2}, {"teeth", 2}, {"helix_angle", 30}},
            "",
-           0.5,
-           10.0,
+           0.37,
+           3.0,
            0.2,
-           1.0},
+           0.7},
       Case{"flat end, passes 0.6 mm apart, vibration and deflection",
            "flat_end",
            {{"diameter", 2}, {"corner_radius", 0.1}, {"teeth", 3}},
