@@ -94,50 +94,74 @@ const std::array<Turn, kSamples>& samples() {
   return table;
 }
 
+// The ring seen along X (the surface is a cylinder along X: only a point's y and z matter): an
+// ellipse about the centre with semi-axes c along m, the ring's direction with no X part, and
+// c |a_x| along w, at the angle psi from m's end. With a_x = 0 (an axis in the Y-Z plane) it is
+// the segment along m, covered twice: the angles 0 and pi are folds, where the two halves meet.
+// There the least of the distance over a half can lie next to the fold on both halves, with the
+// fold itself a bump between them: every bracket ends at a fold, never straddles one.
 class Ring {
  public:
-  Ring(const SurfaceShape& surface, const Vec3& axis, double c) : surface_(surface), c_(c) {
-    // Any unit vector normal to the axis: from X, or from Y where the axis is near X.
-    const Vec3 seed = std::abs(axis.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-    const Vec3 e1 = (seed - seed.dot(axis) * axis).normalized(), e2 = axis.cross(e1);
-    e1y_ = e1.y(), e1z_ = e1.z(), e2y_ = e2.y(), e2z_ = e2.z();
+  Ring(const SurfaceShape& surface, const Vec3& axis, double c) : surface_(surface) {
+    const double n = std::hypot(axis.y(), axis.z());
+    if (!(n > 0)) throw std::runtime_error("a ring about an axis along X has no place");
+    my_ = c * axis.z() / n, mz_ = -c * axis.y() / n;
+    const double b = c * std::abs(axis.x());
+    wy_ = b * axis.y() / n, wz_ = b * axis.z() / n;
   }
   // The least distance with the ring centred at (y, z): over the whole ring the first time, then
   // about the minima found the last time, each followed within a sample's spacing either side
-  // (the secant's steps move the centre by the tangent plane's error at most, and every point's
-  // distance by no more than that).
+  // short of a fold (the secant's steps move the centre by the tangent plane's error at most, and
+  // every point's distance by no more than that).
   double least(double y, double z) {
     y_ = y, z_ = z;
+    double low = INFINITY;
     if (minima_.empty()) {
       const auto& table = samples();
       std::array<double, kSamples> f{};
       for (std::size_t i = 0; i < kSamples; ++i) f[i] = distance(table[i]);
+      std::vector<Turn> found;
       for (std::size_t i = 0; i < kSamples; ++i)
         if (f[i] <= f[(i + kSamples - 1) % kSamples] && f[i] <= f[(i + 1) % kSamples])
-          minima_.push_back(table[i]);
+          for (double side : {-1.0, 1.0}) {
+            Turn d = table[i];
+            low = std::min(low, refine(d, side < 0 ? -kHalfTan : 0.0, side < 0 ? 0.0 : kHalfTan));
+            found.push_back(d);
+          }
+      minima_ = found;
+      return low;
     }
-    double low = INFINITY;
     for (Turn& d : minima_) {
-      double tau = 0;
-      low = std::min(low,
-                     brent([&](double t) { return distance(d.by(t)); }, -kHalfTan, kHalfTan, tau));
-      d = d.by(tau);
+      // Up to a sample's spacing either side, short of the folds (psi = 0 and +-pi), as the
+      // tangents of half the angles.
+      const double psi = std::atan2(d.s, d.c);
+      const double below = d.s >= 0 ? psi : psi + M_PI, above = d.s >= 0 ? M_PI - psi : -psi;
+      const double lo = -std::tan(0.5 * std::min(kStep, below));
+      const double hi = std::tan(0.5 * std::min(kStep, above));
+      low = std::min(low, refine(d, lo, hi));
     }
     return low;
   }
 
  private:
-  // Half a sample's spacing either side, as the tangent of half the angle.
+  static constexpr double kStep = 2 * M_PI / kSamples;
+  // Half a sample's spacing, as the tangent of half the angle.
   const double kHalfTan = std::tan(M_PI / kSamples);
   double distance(const Turn& d) const {
-    return surface_.normal_residual(y_ + c_ * (d.c * e1y_ + d.s * e2y_),
-                                    z_ + c_ * (d.c * e1z_ + d.s * e2z_), 0.0);
+    return surface_.normal_residual(y_ + d.c * my_ + d.s * wy_, z_ + d.c * mz_ + d.s * wz_, 0.0);
+  }
+  // The least within [lo, hi] (tangents of half the angle from d); d gets its direction.
+  double refine(Turn& d, double lo, double hi) const {
+    double tau = 0;
+    const double low = brent([&](double t) { return distance(d.by(t)); }, lo, hi, tau);
+    d = d.by(tau);
+    return low;
   }
 
   const SurfaceShape& surface_;
-  double c_, y_ = 0, z_ = 0;
-  double e1y_, e1z_, e2y_, e2z_;  // the ring plane's unit vectors, in the Y-Z plane
-  std::vector<Turn> minima_;      // the directions of the last minima
+  double y_ = 0, z_ = 0;
+  double my_, mz_, wy_, wz_;  // the ellipse's semi-axes in the Y-Z plane
+  std::vector<Turn> minima_;  // the directions of the last minima
 };
 
 }  // namespace

@@ -7,9 +7,10 @@
 //
 // On a plane that is the tangent plane's closed form, s = (r - ap) + c |n x a|. Over a curve the
 // ring's nearest point moves off the tangent plane, and s is found here: the least signed
-// distance over the ring by sampling and the golden section about each sampled minimum, and s
-// by the secant method from the tangent plane's s (the least distance moves at the cosine
-// between the normals at the foot and at the nearest point: close to 1).
+// distance over the ring by sampling and Brent's method about each sampled minimum (no bracket
+// straddling a fold of the ring seen along X: Ring in ring_rest.cpp), and s by the secant method
+// from the tangent plane's s (the least distance moves at the cosine between the normals at the
+// foot and at the nearest point: close to 1).
 #pragma once
 
 #include "topomill/surface_shape.hpp"
