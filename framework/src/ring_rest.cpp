@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace topomill::detail {
@@ -123,9 +124,9 @@ class Ring {
       std::vector<Turn> found;
       for (std::size_t i = 0; i < kSamples; ++i)
         if (f[i] <= f[(i + kSamples - 1) % kSamples] && f[i] <= f[(i + 1) % kSamples])
-          for (double side : {-1.0, 1.0}) {
+          for (const auto& [lo, hi] : {std::pair{-kHalfTan, 0.0}, std::pair{0.0, kHalfTan}}) {
             Turn d = table[i];
-            low = std::min(low, refine(d, side < 0 ? -kHalfTan : 0.0, side < 0 ? 0.0 : kHalfTan));
+            low = std::min(low, refine(d, lo, hi));  // each side of the sample on its own
             found.push_back(d);
           }
       minima_ = found;
@@ -136,15 +137,15 @@ class Ring {
       // tangents of half the angles.
       const double psi = std::atan2(d.s, d.c);
       const double below = d.s >= 0 ? psi : psi + M_PI, above = d.s >= 0 ? M_PI - psi : -psi;
-      const double lo = -std::tan(0.5 * std::min(kStep, below));
-      const double hi = std::tan(0.5 * std::min(kStep, above));
+      const double lo = -std::tan(0.5 * std::min(kSpacing, below));
+      const double hi = std::tan(0.5 * std::min(kSpacing, above));
       low = std::min(low, refine(d, lo, hi));
     }
     return low;
   }
 
  private:
-  static constexpr double kStep = 2 * M_PI / kSamples;
+  static constexpr double kSpacing = 2 * M_PI / kSamples;  // the samples' (rad)
   // Half a sample's spacing, as the tangent of half the angle.
   const double kHalfTan = std::tan(M_PI / kSamples);
   double distance(const Turn& d) const {
