@@ -121,15 +121,13 @@ class Ring {
       const auto& table = samples();
       std::array<double, kSamples> f{};
       for (std::size_t i = 0; i < kSamples; ++i) f[i] = distance(table[i]);
-      std::vector<Turn> found;
       for (std::size_t i = 0; i < kSamples; ++i)
         if (f[i] <= f[(i + kSamples - 1) % kSamples] && f[i] <= f[(i + 1) % kSamples])
           for (const auto& [lo, hi] : {std::pair{-kHalfTan, 0.0}, std::pair{0.0, kHalfTan}}) {
             Turn d = table[i];
             low = std::min(low, refine(d, lo, hi));  // each side of the sample on its own
-            found.push_back(d);
+            minima_.push_back(d);
           }
-      minima_ = found;
       return low;
     }
     for (Turn& d : minima_) {
