@@ -44,6 +44,15 @@ int stop_signal() {
   return s ? s : SIGINT;
 }
 
+void request_stop() {
+  on_stop_signal(SIGINT);
+}
+
+void clear_stop() {
+  g_signal.store(0);
+  g_stop.store(false);
+}
+
 std::string signal_name(int signal) {
   switch (signal) {
     case SIGTERM:

@@ -19,6 +19,10 @@ const std::atomic<bool>& stop_flag();
 
 // The signal that asked to stop (SIGINT when none did: a stop raised by other means).
 int stop_signal();
+// A stop asked for by the host itself (the Python module on KeyboardInterrupt), reported as
+// SIGINT; and the flag cleared again once the run has stopped, so that the process can run more.
+void request_stop();
+void clear_stop();
 // "SIGINT", "SIGTERM", "SIGHUP".
 std::string signal_name(int signal);
 

@@ -55,4 +55,16 @@ set -e
 [ $code -eq 2 ] || fail "ABI mismatch: exit $code, expected 2"
 echo "$err" | grep -q "libtopomill_ball_end_worn.so' built for topomill plugin ABI 999, this program provides ABI $abi" \
   || fail "ABI mismatch message: $err"
+# The Python package, when built: installed beside the core, it finds the core and the built-in
+# plugins from there, and a third party's plugin through plugin_paths.
+if [ -d "$build/python/topomill" ]; then
+  pkg=$prefix/lib/python3/dist-packages
+  [ -f "$pkg/topomill/__init__.py" ] || fail "the Python package is not installed"
+  PYTHONPATH=$pkg /usr/bin/python3 -B -c "
+import sys, topomill
+assert topomill.__file__.startswith(sys.argv[1]), topomill.__file__
+r = topomill.run(topomill.Scene.load(sys.argv[2], plugin_paths=[sys.argv[3]]))
+assert r.summary['plugins']['tool']['model'] == 'ball_end_worn', r.summary['plugins']
+" "$pkg" "$scene" "$work/template" || fail "the installed Python package"
+fi
 echo "sdk consumer: ok"

@@ -129,7 +129,28 @@ void move_into_place(const std::string& out_dir, const fs::path& staging,
   fs::remove(staging, ec);
 }
 
-// summary.json's content.
+// The human-readable result printed on stdout.
+std::string summary_text(const RunResult& result, const std::string& out_dir,
+                         const std::vector<std::string>& files) {
+  std::ostringstream os;
+  os.precision(4);
+  os << "scene    " << result.settings.file << "\n";
+  const Grid &raw = result.raw.grid, &res = result.residual.grid;
+  os << "grids    height_raw " << raw.nx << " x " << raw.ny << " nodes in plan, dx " << raw.dx * 1e3
+     << " um, dy " << raw.dy * 1e3 << " um; height_residual " << res.nx << " x " << res.ny
+     << " nodes " << (result.settings.unrolled() ? "along the surface" : "in plan") << ", "
+     << res.dx * 1e3 << " x " << res.dy * 1e3 << " um\n";
+  os << roughness_text(result.parameters, "   ", 4) << "\n";
+  os << "time     ";
+  for (const auto& s : result.stages) os << s.name << " " << s.seconds << " s  ";
+  os << "\noutputs  " << out_dir << "/summary.json";
+  for (const auto& f : files) os << " " << f;
+  os << "\n";
+  return os.str();
+}
+
+}  // namespace
+
 std::string summary_json(const RunResult& result, const std::vector<std::string>& files,
                          double write_s, std::chrono::steady_clock::time_point started) {
   const RunSettings& settings = result.settings;
@@ -186,28 +207,6 @@ std::string summary_json(const RunResult& result, const std::vector<std::string>
   };
   return to_json(root);
 }
-
-// The human-readable result printed on stdout.
-std::string summary_text(const RunResult& result, const std::string& out_dir,
-                         const std::vector<std::string>& files) {
-  std::ostringstream os;
-  os.precision(4);
-  os << "scene    " << result.settings.file << "\n";
-  const Grid &raw = result.raw.grid, &res = result.residual.grid;
-  os << "grids    height_raw " << raw.nx << " x " << raw.ny << " nodes in plan, dx " << raw.dx * 1e3
-     << " um, dy " << raw.dy * 1e3 << " um; height_residual " << res.nx << " x " << res.ny
-     << " nodes " << (result.settings.unrolled() ? "along the surface" : "in plan") << ", "
-     << res.dx * 1e3 << " x " << res.dy * 1e3 << " um\n";
-  os << roughness_text(result.parameters, "   ", 4) << "\n";
-  os << "time     ";
-  for (const auto& s : result.stages) os << s.name << " " << s.seconds << " s  ";
-  os << "\noutputs  " << out_dir << "/summary.json";
-  for (const auto& f : files) os << " " << f;
-  os << "\n";
-  return os.str();
-}
-
-}  // namespace
 
 RunSummary write_run_outputs(const RunResult& result, const std::string& out_dir,
                              std::chrono::steady_clock::time_point started) {

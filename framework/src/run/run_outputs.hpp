@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <string>
+#include <vector>
 
 #include "run/pipeline.hpp"
 
@@ -13,6 +14,11 @@ struct RunSummary {
   std::string text;  // the human-readable result printed on stdout
   std::string json;  // summary.json's content
 };
+
+// summary.json's content: the run, the files written (none for a run kept in memory), the
+// seconds writing them took and the whole run's since `started`.
+std::string summary_json(const RunResult& result, const std::vector<std::string>& files,
+                         double write_s, std::chrono::steady_clock::time_point started);
 
 // The scene's settings come with the result (RunResult::settings), read once by the pipeline.
 RunSummary write_run_outputs(const RunResult& result, const std::string& out_dir,
