@@ -1,6 +1,7 @@
 #include "scene.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -178,10 +179,15 @@ void resolve_model(const SlotTableSpec& spec, SlotTable& st, const toml::table* 
 
 }  // namespace
 
-SceneDocument SceneDocument::parse_file(const std::string& path) {
+std::string SceneDocument::read_file(const std::string& path) {
   // A scene is a few kilobytes: 16 MiB is far beyond any, and a device or a directory given as
   // the scene is named as such (a directory read as "missing required table [cutting]").
-  return parse_string(read_file_bounded(path, 16u << 20, "a scene file (TOML)"), path);
+  constexpr std::uint64_t kSceneMaxBytes = 16u << 20;
+  return read_file_bounded(path, kSceneMaxBytes, "a scene file (TOML)");
+}
+
+SceneDocument SceneDocument::parse_file(const std::string& path) {
+  return parse_string(read_file(path), path);
 }
 
 SceneDocument SceneDocument::parse_string(const std::string& text, const std::string& name) {

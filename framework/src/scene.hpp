@@ -56,6 +56,8 @@ class SceneDocument {
  public:
   // Throws InputError with the file, line and column for unreadable or malformed TOML.
   static SceneDocument parse_file(const std::string& path);
+  // A scene file's bytes, read bounded (InputError for a missing, oversized or special file).
+  static std::string read_file(const std::string& path);
   static SceneDocument parse_string(const std::string& text, const std::string& name);
 
   // `key.path=value`; the value is read as TOML, or taken as a string when it is not TOML.

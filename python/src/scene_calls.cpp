@@ -88,6 +88,15 @@ void bind_scene(py::module_& m) {
            py::arg("scene_plugin_paths"));
 
   m.def(
+      "read_scene",
+      [](const std::string& path) {
+        std::string bytes;
+        interruptible([&] { bytes = SceneDocument::read_file(path); }, ErrorKind::Scene);
+        return py::bytes(bytes);
+      },
+      "A scene file's bytes, read as the command line reads them.");
+
+  m.def(
       "parse_scene",
       [](const SceneText& s) { interruptible([&] { document(s); }, ErrorKind::Scene); },
       "Parses the text and applies the overrides: SceneError for malformed TOML or a bad key.");

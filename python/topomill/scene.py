@@ -29,18 +29,14 @@ class Scene:
         Options: plugin_paths (directories searched first), allow_scene_plugin_paths (False
         refuses a scene that names plugin directories: one you did not write)."""
         path = os.fspath(path)
+        data = _topomill.read_scene(path)  # bounded, as the command line reads it
         try:
-            with open(path, "rb") as f:
-                data = f.read(16 << 20 + 1)
-        except OSError as e:
-            from ._errors import SceneError
-            raise SceneError(f"{path}: error: cannot read the scene: {e.strerror}", path, 0, 0,
-                             "", f"cannot read the scene: {e.strerror}") from None
-        if len(data) > 16 << 20:
-            from ._errors import SceneError
-            raise SceneError(f"{path}: error: the scene is larger than 16 MiB", path, 0, 0, "",
-                             "the scene is larger than 16 MiB")
-        return cls(data.decode("utf-8", errors="replace"), path, **options)
+            text = data.decode("utf-8")
+        except UnicodeDecodeError:
+            # The TOML reader names the line and column of the bad byte, as for the command line.
+            _topomill.parse_scene(_topomill.SceneText(data, path, [], [], True))
+            raise
+        return cls(text, path, **options)
 
     @classmethod
     def from_dict(cls, tables, name="<dict>", **options):

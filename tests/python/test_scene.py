@@ -151,7 +151,15 @@ def test_threads_out_of_range():
     assert e.value.key == "threads"
 
 
-def test_a_missing_scene_file():
+@pytest.mark.parametrize("case", ["missing", "directory", "not utf-8"])
+def test_an_unreadable_scene_file_fails_as_on_the_command_line(tmp_path, case):
+    p = tmp_path / "scene.toml"
+    if case == "directory":
+        p.mkdir()
+    elif case == "not utf-8":
+        p.write_bytes(QUICK.read_bytes().replace(b"quick example", b"quick \xff example"))
     with pytest.raises(topomill.SceneError) as e:
-        topomill.Scene.load(ROOT / "no such scene.toml")
-    assert "cannot read" in str(e.value)
+        topomill.Scene.load(p)
+    code, _, stderr = cli("check", p, check=False)
+    assert code == 2 and str(e.value) == stderr.strip()
+    assert e.value.file == str(p)
