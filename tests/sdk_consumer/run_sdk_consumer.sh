@@ -58,7 +58,7 @@ echo "$err" | grep -q "libtopomill_ball_end_worn.so' built for topomill plugin A
 # The Python package, when built: installed beside the core, it finds the core and the built-in
 # plugins from there, and a third party's plugin through plugin_paths.
 if [ -d "$build/python/topomill" ]; then
-  pkg=$prefix/lib/python3/dist-packages
+  pkg=$(echo "$prefix"/lib/python3.*/dist-packages)
   [ -f "$pkg/topomill/__init__.py" ] || fail "the Python package is not installed"
   PYTHONPATH=$pkg /usr/bin/python3 -B -c "
 import sys, topomill
