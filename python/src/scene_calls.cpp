@@ -102,6 +102,13 @@ void bind_scene(py::module_& m) {
       "Parses the text and applies the overrides: SceneError for malformed TOML or a bad key.");
 
   m.def(
+      "resolve_scene",
+      [](const SceneText& s) {
+        interruptible([&] { resolve(s, /*check_unused=*/false); }, ErrorKind::Scene);
+      },
+      "Checks every key the run uses against its schema, as a sweep checks each value first.");
+
+  m.def(
       "check_scene",
       [](const SceneText& s, unsigned threads) {
         std::string text;

@@ -5,7 +5,6 @@ import copy
 import itertools
 import json
 import os
-import time
 
 from . import _toml, _topomill
 from .surface import Map, _parameters
@@ -121,8 +120,8 @@ class Result:
 
     def __repr__(self):
         sa = self.parameters.get("Sa")
-        return (f"Result({self.summary['scene']['name']!r}, raw {self.raw.shape}, "
-                f"Sa {sa.value:g} {sa.unit})" if sa else f"Result(raw {self.raw.shape})")
+        roughness = f", Sa {sa.value:g} {sa.unit}" if sa else ""
+        return f"Result({self.summary['scene']['name']!r}, raw {self.raw.shape}{roughness})"
 
 
 def run(scene, threads=1):
@@ -138,6 +137,14 @@ def run(scene, threads=1):
 SWEEP_PARAMETERS = ("Sa", "Sq", "Sz", "Ssk", "Sku", "Sdq", "Sdr")
 
 
+def _column(name, unit):
+    """A parameter's column, its unit in the name as `topomill sweep` writes it: Sa_um,
+    Sdr_percent, Ssk (no unit)."""
+    if unit == "1":
+        return name
+    return f"{name}_{'percent' if unit == '%' else unit}"
+
+
 def sweep(scene, vary, threads=1, keep_results=False):
     """Runs the cross product of ``vary`` ({"cutting.feed_per_tooth": [0.05, 0.1], ...}) on
     copies of ``scene``, one after the other; returns one record (a dict) per case: the varied
@@ -150,19 +157,20 @@ def sweep(scene, vary, threads=1, keep_results=False):
     for k, v in zip(keys, values):
         if not v:
             raise ValueError(f"vary[{k!r}]: expected at least one value")
+        for value in v:  # every value checked before any case runs, as `topomill sweep` does
+            _topomill.resolve_scene(scene.copy().set(k, value)._native())
     records = []
     for combination in itertools.product(*values):
         case = scene.copy()
         for k, v in zip(keys, combination):
             case.set(k, v)
-        started = time.perf_counter()
         result = run(case, threads)
         record = dict(zip(keys, combination))
         for name in SWEEP_PARAMETERS:
             p = result.parameters.get(name)
             if p is not None:
-                record[name if p.unit == "1" else f"{name}_{'percent' if p.unit == '%' else p.unit}"] = p.value
-        record["time_s"] = time.perf_counter() - started
+                record[_column(name, p.unit)] = p.value
+        record["time_s"] = result.timing["total"]  # the run's own, as `topomill sweep` reports
         if keep_results:
             record["result"] = result
         records.append(record)

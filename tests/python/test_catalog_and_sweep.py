@@ -32,6 +32,7 @@ def test_a_sweep_is_one_record_per_case_in_order():
     alone = topomill.run(topomill.Scene.load(QUICK).set("cutting.feed_per_tooth", 0.1)
                          .set("cutting.stepover", 0.2))
     assert records[2]["Sa_um"] == alone.parameters["Sa"].value
+    assert all(r["time_s"] > 0 for r in records)
     frame = pd.DataFrame(records)
     assert frame.shape[0] == 4
     assert {"Sa_um", "Sq_um", "Sz_um", "Ssk", "Sku", "Sdq", "Sdr_percent", "time_s"} <= set(
@@ -44,3 +45,11 @@ def test_a_sweep_refuses_an_empty_list_and_a_bad_value():
     with pytest.raises(topomill.SceneError) as e:
         topomill.sweep(QUICK, {"cutting.feed_per_tooth": [0.1, -0.1]})
     assert e.value.key == "cutting.feed_per_tooth"
+
+
+def test_a_sweep_checks_every_value_before_it_runs_a_case(monkeypatch):
+    ran = []
+    monkeypatch.setattr(topomill.scene, "run", lambda *a, **k: ran.append(a))
+    with pytest.raises(topomill.SceneError):
+        topomill.sweep(QUICK, {"cutting.stepover": [0.2, 0.3], "cutting.feed_per_tooth": [0.1, -1]})
+    assert ran == []
