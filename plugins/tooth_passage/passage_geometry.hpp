@@ -104,9 +104,13 @@ class PassageGeometry {
     const double rho = std::sqrt(p.x() * p.x() + p.y() * p.y()), sin_a = rho / s_.R;
     const double lag =
         sin_a < s_.sin_tip ? s_.lag_tip : s_.tool->lag_sc(sin_a, std::abs(p.z()) / s_.R);
-    return {p.z() <= 0 && rho >= rho_lo_ && rho <= rho_hi_,
-            wrap(s_.tooth_angle[tooth] + lag + phase_ + s_.omega * t - std::atan2(p.y(), p.x())),
+    return {p.z() <= 0 && rho >= rho_lo_ && rho <= rho_hi_, phase(tooth, t, lag, p.x(), p.y()),
             c.z() - below, rho, lag};
+  }
+  // The crossing equation's g: tooth `tooth`'s edge, lagging by `lag`, against the azimuth of the
+  // point (x, y) in the tool frame at t, wrapped to one turn. One expression for every probe.
+  double phase(int tooth, double t, double lag, double x, double y) const {
+    return wrap(s_.tooth_angle[tooth] + lag + phase_ + s_.omega * t - std::atan2(y, x));
   }
   // The same past the ball in plan (the node's plan offset dx, dy; out of line: rarely asked).
   Probe probe_past_rim(int tooth, double t, double dx, double dy) const;

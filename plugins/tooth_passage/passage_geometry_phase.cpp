@@ -14,9 +14,7 @@ Probe PassageGeometry::probe_past_rim(int tooth, double t, double dx, double dy)
   const double rho = std::sqrt(p.x() * p.x() + p.y() * p.y());
   const double sin_a = std::min(rho / s_.R, 1.0), cos_a = std::sqrt(1 - sin_a * sin_a);
   const double lag = sin_a < s_.sin_tip ? s_.lag_tip : s_.tool->lag_sc(sin_a, cos_a);
-  return {false,
-          wrap(s_.tooth_angle[tooth] + lag + phase_ + s_.omega * t - std::atan2(p.y(), p.x())),
-          INFINITY, rho, lag};
+  return {false, phase(tooth, t, lag, p.x(), p.y()), INFINITY, rho, lag};
 }
 
 double PassageGeometry::crossing(int tooth, double t, double& slope, Probe& last) const {

@@ -11,8 +11,7 @@ inline Probe PassageGeometry::probe_ringed(int tooth, double t, const Vec3& c) c
   const CutterProfile& f = s_.profile;
   const CutterProfile::Point p = f.at(rho);
   const double lag = f.lag(*s_.tool, rho, p);
-  return {p.on && rho >= rho_lo_ && rho <= rho_hi_,
-          wrap(s_.tooth_angle[tooth] + lag + phase_ + s_.omega * t - std::atan2(dy, dx)),
+  return {p.on && rho >= rho_lo_ && rho <= rho_hi_, phase(tooth, t, lag, dx, dy),
           p.on ? c.z() - p.depth + f.up() : INFINITY, rho, lag};
 }
 
