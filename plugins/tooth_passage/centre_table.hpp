@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "range_table.hpp"
+#include "topomill/error.hpp"
 #include "topomill/tool_path.hpp"
 
 namespace topomill::plugins {
@@ -90,13 +91,14 @@ class CentreTable {
     double dt = std::max((t_hi - t_lo) / 16, 1e-9);
     // At most 2^22 knots (200 MB): a smooth path needs far fewer, and a path that is not (NaN
     // off the surface's end) must not take all memory on the way to the refusal.
+    Midpoint worst;
     for (int attempt = 0; attempt < 40 && (t_hi - t_lo) / dt < 4e6; ++attempt, dt /= 2) {
       build(t_lo, t_hi, dt);
-      const double error = max_midpoint_error();
-      if (error <= tolerance) return;
-      if (!std::isfinite(error)) break;
+      worst = max_midpoint_error();
+      if (worst.error <= tolerance) return;
+      if (!std::isfinite(worst.error)) break;
     }
-    throw std::runtime_error("tooth_passage: the tool path is not smooth enough to tabulate");
+    refuse(worst);
   }
 
   [[gnu::flatten]] Vec3 operator()(double t) const {
@@ -357,13 +359,36 @@ class CentreTable {
       jerk_xy_ = std::max(jerk_xy_, 6 * std::hypot(cubic_[i][3].x(), cubic_[i][3].y()));
     jerk_xy_ = 1.01 * jerk_xy_ * inv_dt_ * inv_dt_ * inv_dt_ + 1e-9;
   }
-  double max_midpoint_error() const {
-    double worst = 0;
+  // The worst interpolation error at the intervals' midpoints, and where it is.
+  struct Midpoint {
+    double error = 0, t = 0;
+  };
+  Midpoint max_midpoint_error() const {
+    Midpoint worst;
     for (std::size_t i = 1; i + 2 < knots_.size(); ++i) {
       const double t = t0_ + (static_cast<double>(i) + 0.5) / inv_dt_;
-      worst = std::max(worst, (nominal(t) - path_centre(t)).cwiseAbs().maxCoeff());
+      const double e = (nominal(t) - path_centre(t)).cwiseAbs().maxCoeff();
+      if (!(e <= worst.error)) worst = {e, t};  // NaN wins, and stays
+      if (std::isnan(e)) break;
     }
     return worst;
+  }
+  // A path the cubics cannot follow: one that turns a corner (a ringed cutter resting on both
+  // walls of a concave surface pivots from one to the other), or leaves the surface. Refused as
+  // a scene this evaluator cannot represent, at its plugin key (ParamError).
+  [[noreturn]] void refuse(const Midpoint& worst) const {
+    const double y = path_->surface_y(pass_, worst.t);
+    throw ParamError(
+        "plugin",
+        "tooth_passage follows smooth centre paths only, and the cutter's centre on pass " +
+            std::to_string(pass_ + 1) +
+            (std::isfinite(worst.error)
+                 ? " turns a corner near y = " + format_number(y) +
+                       " mm (as a ringed cutter resting on both walls of a concave "
+                       "surface does)"
+                 : " is not defined near y = " + format_number(y) +
+                       " mm (the path leaves the surface there)") +
+            ": expected evaluator.plugin = \"zmap\", which follows any path");
   }
 
   // What the table holds at t: the nominal centre, or the spindle's axis there; beyond a

@@ -4,6 +4,7 @@
 // said to be, not printed as a number.
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -112,4 +113,32 @@ TEST_CASE("parameters undefined for a map are said to be, with why", "[hostile][
   const auto checker_r = measure("checker.x3p");
   for (const char* n : {"Sdq", "Sdr", "Sdr_gwyddion"}) CHECK(checker_r[n].contains("undefined"));
   CHECK(checker_r["Sa"].contains("value"));
+}
+
+TEST_CASE("a ringed cutter's corner at a concave arc's bottom is refused by tooth_passage",
+          "[hostile][cutter]") {
+  // A bull-nose (c 8 mm) wider than the valley's bottom rests on both walls there: its centre's
+  // path turns a corner at the bottom, y = 0 by symmetry, which the centre tables cannot follow.
+  // Once an internal error (exit 1); now the evaluator's table and key, the place, the way out.
+  const std::string dir = testing::temp_dir("concave_corner");
+  fs::create_directories(dir);
+  const std::string scene = dir + "/scene.toml";
+  std::ofstream(scene) << "[tool]\nplugin = \"bull_nose\"\ndiameter = 20.0\ncorner_radius = 2.0\n"
+                          "[workpiece]\nplugin = \"concave_arc\"\nradius = 25.0\n"
+                          "[cutting]\nspindle_speed = 4000\nfeed_per_tooth = 0.1\n"
+                          "depth_of_cut = 0.1\nstepover = 0.5\n"
+                          "[region]\ncentre = [0.0, 5.0]\nsize = [0.1, 0.1]\nspacing = 0.01\n"
+                          "[evaluator]\nplugin = \"tooth_passage\"\n";
+  const std::string out = dir + "/out";
+  const auto r = testing::run_topomill("run '" + scene + "' -q --out '" + out + "'");
+  INFO(r.err);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains(scene + ":17:1: error: key 'evaluator.plugin': tooth_passage "
+                                            "follows smooth centre paths only"));
+  CHECK_THAT(r.err, Catch::Contains("expected evaluator.plugin = \"zmap\""));
+  const std::string at = "turns a corner near y = ";
+  const auto k = r.err.find(at);
+  REQUIRE(k != std::string::npos);
+  CHECK(std::abs(std::stod(r.err.substr(k + at.size()))) < 1e-3);
+  CHECK_FALSE(fs::exists(out + "/summary.json"));
 }

@@ -8,22 +8,13 @@
 
 #include "interrupt.hpp"
 #include "resources.hpp"
+#include "run/in_table.hpp"
 #include "run/swept_solid.hpp"
 #include "swept_path.hpp"
 
 namespace topomill {
 
 namespace {
-
-// A ParamError raised while a model works (not only when it is made) still names its scene key.
-template <class F>
-auto in_table(const SlotTable& table, F&& f) {
-  try {
-    return f();
-  } catch (const ParamError& e) {
-    throw InputError(table.params.where(e.key()), table.table + "." + e.key(), e.what());
-  }
-}
 
 void require_finite(const std::vector<Vec3>& v, const std::string& what) {
   for (std::size_t i = 0; i < v.size(); ++i)

@@ -10,6 +10,7 @@
 #include "metrology/form_removal.hpp"
 #include "resources.hpp"
 #include "run/effects_stage.hpp"
+#include "run/in_table.hpp"
 #include "topomill/input_files.hpp"
 #include "topomill/surface_shape.hpp"
 #include "topomill/tool_geometry.hpp"
@@ -156,7 +157,7 @@ RunResult run_pipeline(const Scene& scene, const PluginCatalog& catalog,
     EvaluationRequest rq = evaluation_request(m, options.threads);
     if (options.progress) rq.progress = [&](double f) { options.progress("evaluate", f); };
     rq.stop = &stop_flag();
-    m.evaluator->evaluate(rq, map, result.work);
+    in_table(scene.slot("evaluator"), [&] { m.evaluator->evaluate(rq, map, result.work); });
     throw_if_interrupted();  // the map of an interrupted evaluation is incomplete
     return map;
   });
