@@ -376,20 +376,9 @@ class CentreTable {
   // A path the cubics cannot follow: one that turns a corner (a ringed cutter resting on both
   // walls of a concave surface pivots from one to the other), or leaves the surface. Refused as
   // a scene this evaluator cannot represent, at its plugin key (ParamError).
-  [[noreturn]] void refuse(const Midpoint& worst) const {
-    const double y = path_->surface_y(pass_, worst.t);
-    throw ParamError(
-        "plugin",
-        "tooth_passage follows smooth centre paths only, and the cutter's centre on pass " +
-            std::to_string(pass_ + 1) +
-            (std::isfinite(worst.error)
-                 ? " turns a corner near y = " + format_number(y) +
-                       " mm (as a ringed cutter resting on both walls of a concave "
-                       "surface does)"
-                 : " is not defined near y = " + format_number(y) +
-                       " mm (the path leaves the surface there)") +
-            ": expected evaluator.plugin = \"zmap\", which follows any path");
-  }
+  // Out of line and cold (passage_setup.cpp): its message would otherwise weigh on the inlining
+  // of the table's hot members.
+  [[noreturn, gnu::cold, gnu::noinline]] void refuse(const Midpoint& worst) const;
 
   // What the table holds at t: the nominal centre, or the spindle's axis there; beyond a
   // stretch's ends, its line continued.

@@ -109,7 +109,7 @@ class PassageGeometry {
   }
   // The crossing equation's g: tooth `tooth`'s edge, lagging by `lag`, against the azimuth of the
   // point (x, y) in the tool frame at t, wrapped to one turn. One expression for every probe.
-  double phase(int tooth, double t, double lag, double x, double y) const {
+  [[gnu::always_inline]] double phase(int tooth, double t, double lag, double x, double y) const {
     return wrap(s_.tooth_angle[tooth] + lag + phase_ + s_.omega * t - std::atan2(y, x));
   }
   // The same past the ball in plan (the node's plan offset dx, dy; out of line: rarely asked).

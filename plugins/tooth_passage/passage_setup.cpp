@@ -45,6 +45,21 @@ std::vector<PassageSetup::Extent> windows_of(const ToolPath& path, std::size_t p
 }
 }  // namespace
 
+// The table's refusal, out of line (centre_table.hpp says why).
+void CentreTable::refuse(const Midpoint& worst) const {
+  const double y = path_->surface_y(pass_, worst.t);
+  throw ParamError(
+      "plugin", "tooth_passage follows smooth centre paths only, and the cutter's centre on pass " +
+                    std::to_string(pass_ + 1) +
+                    (std::isfinite(worst.error)
+                         ? " turns a corner near y = " + format_number(y) +
+                               " mm (as a ringed cutter resting on both walls of a concave "
+                               "surface does)"
+                         : " is not defined near y = " + format_number(y) +
+                               " mm (the path leaves the surface there)") +
+                    ": expected evaluator.plugin = \"zmap\", which follows any path");
+}
+
 PassageSetup::PassageSetup(const EvaluationRequest& rq, double margin_, int iterations_, int edge)
     : path(rq.path),
       tool(rq.tool),
