@@ -44,6 +44,21 @@ void raise_as_python(std::exception_ptr error, ErrorKind kind) {
   std::rethrow_exception(error);
 }
 
+// Runs `check`, whose errors name the command line's options ("--filter-s"), and names the
+// keyword ("filter_s") and the call instead.
+void with_python_names(const std::function<void()>& check, const std::string& call) {
+  try {
+    check();
+  } catch (const InputError& e) {
+    if (e.where().file != "command line") throw;
+    std::string key = e.key();
+    if (key.rfind("--", 0) == 0) key = key.substr(2);
+    for (char& c : key)
+      if (c == '-') c = '_';
+    throw InputError(SourceRef{call}, key, e.message());
+  }
+}
+
 py::list reported_parameters(const ParameterValues& v) {
   py::list out;
   for (const auto& p : v.reported) out.append(py::make_tuple(p.name, p.value, p.unit, p.method));

@@ -6,6 +6,7 @@
 
 #include <exception>
 #include <functional>
+#include <string>
 
 namespace topomill {
 struct ParameterValues;
@@ -33,6 +34,10 @@ void interruptible(const std::function<void()>& work, ErrorKind kind);
 bool set_python_error(std::exception_ptr error, ErrorKind kind);
 // The same, thrown as py::error_already_set; any other exception rethrown unchanged.
 [[noreturn]] void raise_as_python(std::exception_ptr error, ErrorKind kind);
+
+// Runs `check`, code shared with the command line whose errors name its options
+// ("--filter-s"), and names the Python keyword ("filter_s") and the call instead.
+void with_python_names(const std::function<void()>& check, const std::string& call);
 
 // A run's or a measurement's parameters as (name, value, unit, method) tuples, and the
 // undefined ones as (name, why).

@@ -48,13 +48,6 @@ Resolved resolve(const SceneText& s, bool check_unused) {
   return r;
 }
 
-void check_threads(unsigned threads) {
-  if (threads < 1 || threads > cli::kMaxThreads)
-    throw InputError(SourceRef{"run()"}, "threads",
-                     "expected 1 to " + std::to_string(cli::kMaxThreads) + " threads, got " +
-                         std::to_string(threads));
-}
-
 // A finished run kept in memory: the height maps stay where the pipeline left them, and the
 // arrays handed to Python are views of them that keep this object alive.
 struct RunRecord {
@@ -114,7 +107,7 @@ void bind_scene(py::module_& m) {
         std::string text;
         interruptible(
             [&] {
-              check_threads(threads);
+              with_python_names([&] { cli::check_threads(threads); }, "check()");
               Resolved r = resolve(s, /*check_unused=*/true);
               prepare(r.scene, *r.catalog, threads);
               text = to_toml_text(r.scene.to_toml());
@@ -160,7 +153,7 @@ void bind_scene(py::module_& m) {
               static std::mutex one_run;
               const std::lock_guard<std::mutex> turn(one_run);
               const auto started = std::chrono::steady_clock::now();
-              check_threads(threads);
+              with_python_names([&] { cli::check_threads(threads); }, "run()");
               Resolved r = resolve(s, /*check_unused=*/false);
               RunOptions options;
               options.threads = threads;

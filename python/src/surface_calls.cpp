@@ -68,21 +68,6 @@ py::tuple to_python(const Surface& s) {
   return py::make_tuple(z, g.dx, g.dy, g.x0, g.y0);
 }
 
-// Runs `check`, whose errors name the command line's options ("--filter-s"), and names the
-// keyword ("filter_s") and the call instead.
-void with_python_names(const std::function<void()>& check, const std::string& call) {
-  try {
-    check();
-  } catch (const InputError& e) {
-    if (e.where().file != "command line") throw;
-    std::string key = e.key();
-    if (key.rfind("--", 0) == 0) key = key.substr(2);
-    for (char& c : key)
-      if (c == '-') c = '_';
-    throw InputError(SourceRef{call}, key, e.message());
-  }
-}
-
 // The command line's analysis options, filled from keyword arguments and checked by the same
 // code; an error names the keyword ("filter_s") where the command line names "--filter-s".
 cli::AnalysisOptions analysis_options(const py::dict& o, const std::string& call) {
