@@ -18,5 +18,6 @@ int cmd_compare(const Args& args);
 int cmd_sweep(const Args& args);
 int cmd_ablate(const Args& args);
 int cmd_study(const Args& args);
+int cmd_lobes(const Args& args);
 
 }  // namespace topomill::cli

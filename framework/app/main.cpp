@@ -31,6 +31,7 @@ const Command kCommands[] = {
     {"ablate", topomill::cli::cmd_ablate, "each effect off in turn, and swapped models"},
     {"sweep", topomill::cli::cmd_sweep, "the cross product of varied scene keys"},
     {"study", topomill::cli::cmd_study, "accuracy against time, per evaluator and resolution"},
+    {"lobes", topomill::cli::cmd_lobes, "stability lobes: critical depth against spindle speed"},
 };
 
 void usage(std::ostream& os) {

@@ -60,6 +60,8 @@ class Armarego : public ForceModel {
         kae_(p.number("Kae")),
         elements_(static_cast<std::size_t>(std::ceil(90.0 / p.number("element_angle") - 1e-9))) {}
 
+  ChipCoefficients chip_coefficients() const override { return {ktc_, krc_, kac_}; }
+
   // The elements' polar angles are fixed on the tool, so everything that depends on the angle
   // alone (its sine and cosine, the lag's, the edge's stretch) is tabulated once per tool; a
   // sample costs each tooth's rotation and the chip per element, no transcendental function.

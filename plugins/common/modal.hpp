@@ -61,6 +61,12 @@ class Modal : public DynamicsModel {
     return 2 * M_PI / fastest / 40;
   }
 
+  std::vector<ModalMode> modes() const override {
+    std::vector<ModalMode> out;
+    for (const auto& m : modes_) out.push_back({m.axis, m.omega, m.xi, m.k});
+    return out;
+  }
+
   // Displacement in mm: the sum over modes of each mode's response (m) to its axis' force.
   std::vector<Vec3> respond(const std::vector<Vec3>& force, double dt) const override {
     std::vector<Vec3> out(force.size(), Vec3::Zero());

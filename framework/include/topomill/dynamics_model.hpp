@@ -9,6 +9,13 @@
 
 namespace topomill {
 
+// One mode of the structure along a workpiece axis: natural frequency (rad/s), damping ratio and
+// modal stiffness (N/m); the axis's displacement is the sum of its modes'.
+struct ModalMode {
+  int axis;  // 0 x, 1 y, 2 z
+  double omega, damping, stiffness;
+};
+
 class TOPOMILL_API DynamicsModel : public Model {
  public:
   // Displacement (mm, CS2) at each sample of a force history (N) sampled every `dt` seconds,
@@ -20,6 +27,9 @@ class TOPOMILL_API DynamicsModel : public Model {
   // The step (s) this model wants for accuracy (e.g. a fraction of its fastest mode's period); the
   // core samples forces and the response at the smaller of this and its own force resolution.
   virtual double suggested_step() const { return std::numeric_limits<double>::infinity(); }
+  // The modes, where the model is modal (the linear stability analysis, topomill lobes, needs
+  // them); empty otherwise.
+  virtual std::vector<ModalMode> modes() const { return {}; }
 };
 
 template <>

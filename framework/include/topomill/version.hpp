@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #define TOPOMILL_VERSION_STRING "0.1.0"
-#define TOPOMILL_ABI_VERSION 12u
+#define TOPOMILL_ABI_VERSION 13u
 
 namespace topomill {
 inline constexpr std::uint32_t kAbiVersion = TOPOMILL_ABI_VERSION;
