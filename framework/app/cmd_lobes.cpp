@@ -1,12 +1,14 @@
 // topomill lobes: the stability lobes of a scene's cutter, force law, immersion and modes by
 // semi-discretisation (framework/src/stability/, docs/stability.md).
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "io/png_lobes.hpp"
 #include "log.hpp"
 #include "run/pipeline.hpp"
 #include "scene_options.hpp"
@@ -69,50 +71,11 @@ stability::Engagement engagement(const Scene& scene, const ToolPath& path) {
   return e;
 }
 
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
-
-}  // namespace
-
-int cmd_lobes(const Args& args) {
-  SceneOptions so;
-  std::string speeds = "";
-  double depth_max = 50;
-  int steps = 0;
-  bool json = false;
-  po::options_description opts(
-      "topomill lobes SCENE --spindle FROM:TO[:N] [--depth-max MM] [--steps M] [--json]: the\n"
-      "stability lobes of the scene's cutter, force law, stepover and modes (its [vibration]\n"
-      "table), by semi-discretisation: the critical axial depth at N spindle speeds, and whether\n"
-      "the cut turns unstable by a flip (period doubling) or a Hopf bifurcation");
-  opts.add_options()("spindle", po::value(&speeds), "FROM:TO[:N] rpm (N: 200)")(
-      "depth-max", po::value(&depth_max)->default_value(50.0),
-      "the deepest axial depth looked at (mm)")(
-      "steps", po::value(&steps)->default_value(0),
-      "semi-discretisation steps per tooth period (0: at least 40, and 30 per cycle of the "
-      "fastest mode)")(
-      "json", po::bool_switch(&json), "print JSON instead of a table");
-  add_scene_options(opts, so);
-  LoadedScene loaded = load_scene(args, opts, so, /*check_unused=*/false);
-  if (!loaded.scene) {
-    std::cout << opts << "\n";
-    return 0;
-  }
-  if (speeds.empty())
-    throw InputError(SourceRef{"command line"}, "--spindle",
-                     "missing: expected FROM:TO[:N] in rpm (e.g. 5000:25000:200)");
-  const SpeedRange range = parse_speeds(speeds);
-  if (!(depth_max > 0) || !std::isfinite(depth_max))
-    throw InputError(SourceRef{"command line"}, "--depth-max",
-                     "expected a positive depth in mm (e.g. 50)");
-  if (steps != 0 && (steps < 4 || steps > kMaxSteps))
-    throw InputError(SourceRef{"command line"}, "--steps",
-                     "expected 0 (automatic) or 4 to " + std::to_string(kMaxSteps) +
-                         " steps per tooth period");
-  const Scene& scene = *loaded.scene;
-  const Prepared m = prepare(scene, *loaded.catalog);
-  const SlotTable& vib = scene.slot("vibration");
+// What the analysis reads of the scene's models, refused (naming the table) where they give none.
+stability::LobeSetup lobe_setup(const Scene& scene, const Prepared& m, int steps,
+                                double depth_max) {
   if (!m.dynamics || m.dynamics->modes().empty())
-    throw InputError(vib.where, "vibration",
+    throw InputError(scene.slot("vibration").where, "vibration",
                      "lobes needs the structure's modes: expected an enabled [vibration] table "
                      "with a modal model (modal_exact, modal_rk4)");
   const ChipCoefficients k = m.force->chip_coefficients();
@@ -127,6 +90,60 @@ int cmd_lobes(const Args& args) {
   s.modes = m.dynamics->modes();
   s.steps = steps;
   s.depth_max = depth_max;
+  return s;
+}
+
+nlohmann::json finite_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nullptr;
+}
+
+}  // namespace
+
+int cmd_lobes(const Args& args) {
+  SceneOptions so;
+  std::string speeds = "";
+  double depth_max = 50;
+  int steps = 0;
+  bool json = false;
+  std::string png;
+  po::options_description opts(
+      "topomill lobes SCENE --spindle FROM:TO[:N] [--depth-max MM] [--steps M] [--json]: the\n"
+      "stability lobes of the scene's cutter, force law, stepover and modes (its [vibration]\n"
+      "table), by semi-discretisation: the critical axial depth at N spindle speeds, and whether\n"
+      "the cut turns unstable by a flip (period doubling) or a Hopf bifurcation");
+  opts.add_options()("spindle", po::value(&speeds), "FROM:TO[:N] rpm (N: 200)")(
+      "depth-max", po::value(&depth_max)->default_value(50.0),
+      "the deepest axial depth looked at (mm)")(
+      "steps", po::value(&steps)->default_value(0),
+      "semi-discretisation steps per tooth period (0: at least 40, and 30 per cycle of the "
+      "fastest mode)")("json", po::bool_switch(&json), "print JSON instead of a table")(
+      "png", po::value(&png), "also draw the lobes, the scene's operating point marked, here");
+  add_scene_options(opts, so);
+  LoadedScene loaded = load_scene(args, opts, so, /*check_unused=*/false);
+  if (!loaded.scene) {
+    std::cout << opts << "\n";
+    return 0;
+  }
+  if (speeds.empty())
+    throw InputError(SourceRef{"command line"}, "--spindle",
+                     "missing: expected FROM:TO[:N] in rpm (e.g. 5000:25000:200)");
+  const SpeedRange range = parse_speeds(speeds);
+  if (!(depth_max > 0) || !std::isfinite(depth_max))
+    throw InputError(SourceRef{"command line"}, "--depth-max",
+                     "expected a positive depth in mm (e.g. 50)");
+  if (steps != 0 && (steps < 4 || steps > kMaxSteps))
+    throw InputError(
+        SourceRef{"command line"}, "--steps",
+        "expected 0 (automatic) or 4 to " + std::to_string(kMaxSteps) + " steps per tooth period");
+  if (!png.empty()) {
+    const std::filesystem::path dir = std::filesystem::path(png).parent_path();
+    if (!std::filesystem::is_directory(dir.empty() ? "." : dir))
+      throw InputError(SourceRef{"command line"}, "--png",
+                       "'" + png + "': expected a file in an existing directory");
+  }
+  const Scene& scene = *loaded.scene;
+  const Prepared m = prepare(scene, *loaded.catalog);
+  const stability::LobeSetup s = lobe_setup(scene, m, steps, depth_max);
   const double rpm0 = scene.table("cutting").number("spindle_speed");
   const double ap0 = scene.table("cutting").number("depth_of_cut");
   const stability::Multiplier at = stability::multiplier_at(s, rpm0, ap0);
@@ -135,6 +152,8 @@ int cmd_lobes(const Args& args) {
   out["depth_mm"] = nlohmann::json::array();
   out["onset"] = nlohmann::json::array();
   out["steps_per_period"] = nlohmann::json::array();
+  LobeCurve curve;
+  curve.depth_max = depth_max;
   if (!json) std::cout << "spindle_rpm\tdepth_mm\tonset\n";
   for (int i = 0; i < range.count; ++i) {
     const double rpm = range.from + (range.to - range.from) * i / (range.count - 1);
@@ -143,15 +162,27 @@ int cmd_lobes(const Args& args) {
     out["depth_mm"].push_back(finite_or_null(p.depth));
     out["onset"].push_back(stability::onset_name(p.onset));
     out["steps_per_period"].push_back(stability::steps_at(s, rpm));
+    curve.rpm.push_back(rpm), curve.depth.push_back(p.depth);
+    curve.flip.push_back(p.onset == stability::Onset::kFlip);
     if (!json)
-      std::cout << rpm << "\t" << (std::isfinite(p.depth) ? std::to_string(p.depth) : "-")
-                << "\t" << stability::onset_name(p.onset) << "\n";
+      std::cout << rpm << "\t" << (std::isfinite(p.depth) ? std::to_string(p.depth) : "-") << "\t"
+                << stability::onset_name(p.onset) << "\n";
   }
   out["operating_point"] = {{"spindle_rpm", rpm0},
                             {"depth_mm", ap0},
                             {"multiplier", at.modulus()},
                             {"stable", at.modulus() < 1}};
   out["depth_max_mm"] = depth_max;
+  if (!png.empty()) {
+    curve.operating_rpm = rpm0, curve.operating_depth = ap0,
+    curve.operating_stable = at.modulus() < 1;
+    curve.title = "Stability lobes: " + scene.table("scene").string("name");
+    try {
+      write_lobes_chart(png, curve);
+    } catch (const std::exception& e) {
+      throw InputError(SourceRef{"command line"}, "--png", e.what());
+    }
+  }
   if (json) std::cout << out.dump(2) << "\n";
   log_info(std::string("operating point ") + (at.modulus() < 1 ? "stable" : "unstable") +
            " (largest multiplier " + std::to_string(at.modulus()) + ")");

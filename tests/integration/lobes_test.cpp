@@ -2,6 +2,7 @@
 // naming the option or the scene's table).
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "support/run_command.hpp"
@@ -41,6 +42,17 @@ TEST_CASE("lobes: the benchmark's JSON, its envelope above the zero-order minimu
   CHECK(j["operating_point"]["stable"].get<bool>());
 }
 
+TEST_CASE("lobes draws its picture where asked", "[lobes]") {
+  const std::string dir = testing::temp_dir("lobes");
+  std::filesystem::create_directories(dir);
+  const std::string png = dir + "/lobes.png";
+  const auto r = testing::run_topomill(std::string("lobes ") + kFullImmersion +
+                                       " --spindle 5000:25000:5 -q --png '" + png + "'");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(testing::read_file(png).substr(1, 3) == "PNG");
+}
+
 TEST_CASE("lobes refuses bad options and scenes without modes", "[lobes][errors]") {
   const std::string scene = kFullImmersion;
   struct Case {
@@ -54,6 +66,8 @@ TEST_CASE("lobes refuses bad options and scenes without modes", "[lobes][errors]
            Case{"--spindle 5000:9000:2.5", "key '--spindle'"},
            Case{"--spindle 5000:9000 --steps 3", "key '--steps': expected 0 (automatic) or 4"},
            Case{"--spindle 5000:9000 --depth-max -1", "key '--depth-max': expected a positive"},
+           Case{"--spindle 5000:9000 --png /nonexistent/lobes.png",
+                "key '--png': '/nonexistent/lobes.png': expected a file in an existing directory"},
            Case{"--spindle 5000:9000 --set vibration.enabled=false",
                 scene + ":44:1: error: key 'vibration': lobes needs the structure's modes"},
        }) {

@@ -67,8 +67,7 @@ TEST_CASE("semi-discretisation: the delayed Mathieu equation (SemiDiscretization
   CHECK(dominant_multiplier(s).modulus() == Approx(0.5131596340374617).epsilon(1e-11));
 }
 
-TEST_CASE("semi-discretisation: a step's matrices are the integrals they stand for",
-          "[lobes]") {
+TEST_CASE("semi-discretisation: a step's matrices are the integrals they stand for", "[lobes]") {
   Eigen::MatrixXd A(2, 2), B(2, 1);
   A << -3, 1, -40, -0.7;
   B << 0.5, -2;
@@ -117,8 +116,8 @@ TEST_CASE("semi-discretisation: a delayed oscillator's boundary is the character
     double lo = 0, hi = 4 * exact;
     for (int k = 0; k < 30; ++k) {
       const double g = 0.5 * (lo + hi);
-      (dominant_multiplier(oscillator(wn, zeta, g * wn * wn, tau, 150)).modulus() >= 1 ? hi
-                                                                                         : lo) = g;
+      (dominant_multiplier(oscillator(wn, zeta, g * wn * wn, tau, 150)).modulus() >= 1 ? hi : lo) =
+          g;
     }
     INFO("tau " << tau << ": exact " << exact << ", semi-discretised " << lo);
     CHECK(lo == Approx(exact).epsilon(1e-2));  // 150 steps: within 0.5 % seen

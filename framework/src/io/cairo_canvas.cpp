@@ -76,8 +76,13 @@ void viridis(double t, double rgb[3]) {
 }
 
 std::string number(double v) {
+  // Whole numbers up to a million in full (spindle speeds, node counts: 12500, not 1.25e+04).
+  constexpr double kWhole = 1e6;
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
+  if (std::abs(v) < kWhole && v == std::round(v))
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+  else
+    std::snprintf(buf, sizeof buf, "%.4g", v);
   return buf;
 }
 

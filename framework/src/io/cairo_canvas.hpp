@@ -32,7 +32,7 @@ struct Canvas {
 void palette(cairo_t* cr, std::size_t i);
 // Viridis at t in [0, 1].
 void viridis(double t, double rgb[3]);
-// A tick label: 4 significant digits, no trailing zeros.
+// A tick label: 4 significant digits, no trailing zeros; a whole number below a million in full.
 std::string number(double v);
 // Ticks in [lo, hi]: on a linear axis the largest 1-2-5 step that leaves at least `intervals`
 // steps (4: 4 to 10 ticks); on a log axis powers of ten (with 2 and 5 if few).

@@ -64,8 +64,8 @@ std::vector<CuttingElement> cutting_elements(const ToolGeometry& tool, const Eng
   const double z0 = tool.section(0.0).y(), top = tool.section(M_PI / 2).y();
   const double side = e.depth - (top - z0);
   if (side > 0 && tool.first_polar_angle() >= 0) {
-    const int n = std::max(1, static_cast<int>(std::ceil(side * std::abs(tool.side_lead()) /
-                                                         kSideLagStep)));
+    const int n =
+        std::max(1, static_cast<int>(std::ceil(side * std::abs(tool.side_lead()) / kSideLagStep)));
     const Vec3 p = tool.edge_point(0, M_PI / 2, 0.0);
     const double rho = std::hypot(p.x(), p.y()), psi = std::atan2(p.y(), p.x());
     for (int k = 0; k < n; ++k) {

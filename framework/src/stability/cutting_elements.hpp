@@ -29,8 +29,8 @@ struct CuttingElement {
 };
 
 struct Engagement {
-  double feed_azimuth;  // rad
-  int side;             // +1: the uncut material lies at +90 deg from the feed, -1 at -90 deg
+  double feed_azimuth;     // rad
+  int side;                // +1: the uncut material lies at +90 deg from the feed, -1 at -90 deg
   double stepover, depth;  // mm
 };
 

@@ -9,7 +9,9 @@ namespace {
 
 constexpr double kMmPerM = 1e3;
 
-double wrap(double a) { return a - 2 * M_PI * std::floor((a + M_PI) / (2 * M_PI)); }
+double wrap(double a) {
+  return a - 2 * M_PI * std::floor((a + M_PI) / (2 * M_PI));
+}
 
 // The element's D at azimuth psi (per unit width).
 Eigen::Matrix3d element_matrix(const CuttingElement& el, const MillingModel& m, double psi) {
@@ -34,8 +36,8 @@ std::vector<Eigen::Matrix3d> directional_averages(const MillingModel& m, double 
     for (int j = 0; j < m.teeth; ++j)
       for (const CuttingElement& el : m.elements) {
         // The element's azimuth relative to the feed's over the step.
-        const double start = wrap(el.psi0 + 2 * M_PI * j / m.teeth + m.sense * w * i * h -
-                                  m.feed_azimuth);
+        const double start =
+            wrap(el.psi0 + 2 * M_PI * j / m.teeth + m.sense * w * i * h - m.feed_azimuth);
         const double end = start + m.sense * w * h;
         const double a = std::max(std::min(start, end), el.lo);
         const double b = std::min(std::max(start, end), el.hi);

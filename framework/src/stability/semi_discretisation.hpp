@@ -23,11 +23,11 @@
 namespace topomill::stability {
 
 struct DelaySystem {
-  int n = 0;                 // size of x
-  Eigen::MatrixXd S;         // d x n: z = S x
-  double tau = 0;            // the delay
-  double h = 0;              // the step
-  int steps = 0;             // steps in the mapped interval (a period)
+  int n = 0;          // size of x
+  Eigen::MatrixXd S;  // d x n: z = S x
+  double tau = 0;     // the delay
+  double h = 0;       // the step
+  int steps = 0;      // steps in the mapped interval (a period)
   // A_i (n x n) and B_i (n x d): the averages over step i, [i h, (i + 1) h].
   std::function<void(int i, Eigen::MatrixXd& A, Eigen::MatrixXd& B)> step;
 };
@@ -42,8 +42,11 @@ struct Multiplier {
 // at least 1 (tau >= h).
 Eigen::MatrixXd monodromy(const DelaySystem& sys);
 
-// The dominant Floquet multiplier of the monodromy matrix.
+// The dominant Floquet multiplier: by implicitly restarted Arnoldi (Spectra) on the monodromy
+// applied step by step, never formed; where that does not converge, by all the eigenvalues of
+// the matrix formed (dominant_multiplier_dense, the oracle beside it).
 Multiplier dominant_multiplier(const DelaySystem& sys);
+Multiplier dominant_multiplier_dense(const DelaySystem& sys);
 
 // One step's matrices (exposed for tests): P, W0, W1 for the averages A, B, step h, and the
 // delay's remainder e = tau - r h.
