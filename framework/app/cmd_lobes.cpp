@@ -21,6 +21,7 @@ namespace {
 constexpr int kDefaultSpeeds = 200;
 constexpr int kMaxSpeeds = 100000;
 constexpr int kMaxSteps = 2000;
+constexpr double kMaxDepth = 1000;  // mm: a bound on the edge elements a trial builds
 
 struct SpeedRange {
   double from, to;
@@ -128,9 +129,9 @@ int cmd_lobes(const Args& args) {
     throw InputError(SourceRef{"command line"}, "--spindle",
                      "missing: expected FROM:TO[:N] in rpm (e.g. 5000:25000:200)");
   const SpeedRange range = parse_speeds(speeds);
-  if (!(depth_max > 0) || !std::isfinite(depth_max))
+  if (!(depth_max > 0) || !(depth_max <= kMaxDepth))
     throw InputError(SourceRef{"command line"}, "--depth-max",
-                     "expected a positive depth in mm (e.g. 50)");
+                     "expected a positive depth in mm, at most 1000 (e.g. 50)");
   if (steps != 0 && (steps < 4 || steps > kMaxSteps))
     throw InputError(
         SourceRef{"command line"}, "--steps",
@@ -144,9 +145,18 @@ int cmd_lobes(const Args& args) {
   const Scene& scene = *loaded.scene;
   const Prepared m = prepare(scene, *loaded.catalog);
   const stability::LobeSetup s = lobe_setup(scene, m, steps, depth_max);
+  const double slowest = stability::slowest_speed(s);
+  if (range.from < slowest)
+    throw InputError(SourceRef{"command line"}, "--spindle",
+                     "'" + speeds + "': expected FROM of at least " + std::to_string(slowest) +
+                         " rpm: slower, a tooth period holds more cycles of the fastest mode "
+                         "than 2000 steps resolve");
   const double rpm0 = scene.table("cutting").number("spindle_speed");
   const double ap0 = scene.table("cutting").number("depth_of_cut");
-  const stability::Multiplier at = stability::multiplier_at(s, rpm0, ap0);
+  // The scene's own speed, where the steps resolve it (else its stability is not known: null).
+  const bool resolved = rpm0 >= slowest;
+  const stability::Multiplier at =
+      resolved ? stability::multiplier_at(s, rpm0, ap0) : stability::Multiplier{NAN};
   nlohmann::json out;
   out["spindle_rpm"] = nlohmann::json::array();
   out["depth_mm"] = nlohmann::json::array();
@@ -171,11 +181,11 @@ int cmd_lobes(const Args& args) {
   out["operating_point"] = {{"spindle_rpm", rpm0},
                             {"depth_mm", ap0},
                             {"multiplier", at.modulus()},
-                            {"stable", at.modulus() < 1}};
+                            {"stable", resolved ? nlohmann::json(at.modulus() < 1) : nullptr}};
   out["depth_max_mm"] = depth_max;
   if (!png.empty()) {
     curve.operating_rpm = rpm0, curve.operating_depth = ap0,
-    curve.operating_stable = at.modulus() < 1;
+    curve.operating_stable = resolved && at.modulus() < 1;
     curve.title = "Stability lobes: " + scene.table("scene").string("name");
     try {
       write_lobes_chart(png, curve);
@@ -184,8 +194,11 @@ int cmd_lobes(const Args& args) {
     }
   }
   if (json) std::cout << out.dump(2) << "\n";
-  log_info(std::string("operating point ") + (at.modulus() < 1 ? "stable" : "unstable") +
-           " (largest multiplier " + std::to_string(at.modulus()) + ")");
+  if (resolved)
+    log_info(std::string("operating point ") + (at.modulus() < 1 ? "stable" : "unstable") +
+             " (largest multiplier " + std::to_string(at.modulus()) + ")");
+  else
+    log_info("operating point below " + std::to_string(slowest) + " rpm: not analysed");
   return 0;
 }
 

@@ -32,12 +32,26 @@ const char* onset_name(Onset o) {
   return "none";
 }
 
-int steps_at(const LobeSetup& s, double rpm) {
-  if (s.steps > 0) return s.steps;
+namespace {
+
+double fastest_hz(const LobeSetup& s) {
   double fastest = 0;
   for (const ModalMode& m : s.modes) fastest = std::max(fastest, m.omega / (2 * M_PI));
+  return fastest;
+}
+
+}  // namespace
+
+double slowest_speed(const LobeSetup& s) {
+  return 60 * kStepsPerCycle * fastest_hz(s) / (s.tool->teeth() * double{kMaxAutoSteps});
+}
+
+int steps_at(const LobeSetup& s, double rpm) {
+  if (s.steps > 0) return s.steps;
+  const double fastest = fastest_hz(s);
   const double period = 60 / (rpm * s.tool->teeth());
-  return std::max(kMinSteps, static_cast<int>(std::ceil(kStepsPerCycle * fastest * period)));
+  const double wanted = std::ceil(kStepsPerCycle * fastest * period);
+  return static_cast<int>(std::clamp(wanted, double{kMinSteps}, double{kMaxAutoSteps}));
 }
 
 Multiplier multiplier_at(const LobeSetup& s, double rpm, double depth) {

@@ -38,8 +38,14 @@ struct LobePoint {
 
 inline constexpr int kMinSteps = 40;
 inline constexpr int kStepsPerCycle = 30;
+// The automatic steps' ceiling: a slow spindle under a fast mode would ask for millions.
+inline constexpr int kMaxAutoSteps = 2000;
 // The steps per tooth period used at `rpm`.
 int steps_at(const LobeSetup& s, double rpm);
+// The slowest speed whose tooth period the automatic steps resolve (kStepsPerCycle per cycle of
+// the fastest mode within kMaxAutoSteps): below it a period holds more cycles than that, and the
+// analysis is refused.
+double slowest_speed(const LobeSetup& s);
 
 // The dominant multiplier at a speed and depth.
 Multiplier multiplier_at(const LobeSetup& s, double rpm, double depth);
