@@ -94,6 +94,23 @@ stability::LobeSetup lobe_setup(const Scene& scene, const Prepared& m, int steps
   return s;
 }
 
+// --depth-max, --steps and --png, before any work.
+void check_options(double depth_max, int steps, const std::string& png) {
+  if (!(depth_max > 0) || !(depth_max <= kMaxDepth))
+    throw InputError(SourceRef{"command line"}, "--depth-max",
+                     "expected a positive depth in mm, at most 1000 (e.g. 50)");
+  if (steps != 0 && (steps < 4 || steps > kMaxSteps))
+    throw InputError(
+        SourceRef{"command line"}, "--steps",
+        "expected 0 (automatic) or 4 to " + std::to_string(kMaxSteps) + " steps per tooth period");
+  if (!png.empty()) {
+    const std::filesystem::path dir = std::filesystem::path(png).parent_path();
+    if (!std::filesystem::is_directory(dir.empty() ? "." : dir))
+      throw InputError(SourceRef{"command line"}, "--png",
+                       "'" + png + "': expected a file in an existing directory");
+  }
+}
+
 nlohmann::json finite_or_null(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nullptr;
 }
@@ -129,19 +146,7 @@ int cmd_lobes(const Args& args) {
     throw InputError(SourceRef{"command line"}, "--spindle",
                      "missing: expected FROM:TO[:N] in rpm (e.g. 5000:25000:200)");
   const SpeedRange range = parse_speeds(speeds);
-  if (!(depth_max > 0) || !(depth_max <= kMaxDepth))
-    throw InputError(SourceRef{"command line"}, "--depth-max",
-                     "expected a positive depth in mm, at most 1000 (e.g. 50)");
-  if (steps != 0 && (steps < 4 || steps > kMaxSteps))
-    throw InputError(
-        SourceRef{"command line"}, "--steps",
-        "expected 0 (automatic) or 4 to " + std::to_string(kMaxSteps) + " steps per tooth period");
-  if (!png.empty()) {
-    const std::filesystem::path dir = std::filesystem::path(png).parent_path();
-    if (!std::filesystem::is_directory(dir.empty() ? "." : dir))
-      throw InputError(SourceRef{"command line"}, "--png",
-                       "'" + png + "': expected a file in an existing directory");
-  }
+  check_options(depth_max, steps, png);
   const Scene& scene = *loaded.scene;
   const Prepared m = prepare(scene, *loaded.catalog);
   const stability::LobeSetup s = lobe_setup(scene, m, steps, depth_max);
